@@ -1,0 +1,2 @@
+// Placeholder translation unit so the bench library exists before the baselines land.
+namespace dcurve::bench {}

@@ -1,0 +1,94 @@
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "encoder/encoder.h"
+#include "encoder/io/files.h"
+
+namespace dcurve::cli {
+
+Action add_encode(CLI::App& app) {
+  struct Opts {
+    std::string input, output;
+    double tolerance = 1e-3;
+    bool json = false, no_connectivity = false;
+    int threads = 0;
+  };
+  auto o = std::make_shared<Opts>();
+  app.add_option("input", o->input, "Folder of frames (OBJ/PLY/OFF, sorted by name) or a scene file (.json)")
+      ->required();
+  app.add_option("-o,--output", o->output, "Output .dcrv file")->required();
+  app.add_option("--tolerance", o->tolerance, "Max error, fraction of the rest-pose bounding-box diagonal")
+      ->check(CLI::Range(1e-7, 0.5))
+      ->capture_default_str();
+  app.add_flag("--no-connectivity", o->no_connectivity, "Leave faces out of the file (the engine has the mesh)");
+  app.add_option("--threads", o->threads, "Worker threads, 0 = all cores (output is the same for any count)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--json", o->json, "Print one JSON object with the encode summary on stdout");
+  return [o]() {
+    Animation anim;
+    std::string err;
+    std::error_code ec;
+    if (std::filesystem::is_directory(o->input, ec)) {
+      if (!read_frame_folder(o->input, &anim, &err)) {
+        std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
+        return 1;
+      }
+    } else if (std::filesystem::is_regular_file(o->input, ec)) {
+      std::fprintf(stderr, "dcurve encode: %s: scene input needs the simulator, which is not built yet\n",
+                   o->input.c_str());
+      return 1;
+    } else {
+      std::fprintf(stderr, "dcurve encode: %s: no such file or folder\n", o->input.c_str());
+      return 1;
+    }
+    EncodeOptions eo;
+    eo.tolerance = o->tolerance;
+    eo.connectivity = !o->no_connectivity;
+    eo.threads = o->threads;
+    eo.progress = progress_bar("encode");
+    std::vector<uint8_t> bytes;
+    EncodeReport rep;
+    if (!encode_animation(anim, eo, &bytes, &rep, &err)) {
+      std::fprintf(stderr, "dcurve encode: %s: %s\n", o->input.c_str(), err.c_str());
+      return 1;
+    }
+    if (!write_file_atomic(o->output, bytes.data(), bytes.size(), &err)) {
+      std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
+      return 1;
+    }
+    nlohmann::json j = {{"input", o->input},
+                        {"output", o->output},
+                        {"tolerance", o->tolerance},
+                        {"bytes", rep.bytes},
+                        {"motion_bytes", rep.motion_bytes},
+                        {"connectivity_bytes", rep.connectivity_bytes},
+                        {"vertices", rep.vertices},
+                        {"frames", rep.frames},
+                        {"curves", rep.curves},
+                        {"segments", rep.segments},
+                        {"mean_points_per_curve", rep.mean_points_per_curve},
+                        {"median_points_per_curve", rep.median_points_per_curve},
+                        {"short_curve_vertex_fraction", rep.short_curve_vertex_fraction},
+                        {"mean_turning_angle_deg", rep.mean_turning_angle_deg},
+                        {"max_error", rep.error.max_error},
+                        {"rmse", rep.error.rmse},
+                        {"kg_error_pct", rep.error.kg_error_pct},
+                        {"bpvf", rep.bpvf},
+                        {"encode_seconds", rep.encode_seconds}};
+    if (o->json) {
+      std::printf("%s\n", j.dump().c_str());
+    } else {
+      std::printf("%s: %llu bytes, %u vertices x %u frames, %.3f bits/vertex/frame, max error %.3g (tolerance %.3g), "
+                  "%.2f s\n",
+                  o->output.c_str(), (unsigned long long)rep.bytes, rep.vertices, rep.frames, rep.bpvf,
+                  rep.error.max_error, o->tolerance, rep.encode_seconds);
+    }
+    return 0;
+  };
+}
+
+}  // namespace dcurve::cli

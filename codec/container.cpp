@@ -1,0 +1,321 @@
+#include "codec/container.h"
+
+#include <zstd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "codec/bytes.h"
+#include "codec/crc32.h"
+#include "codec/validate.h"
+
+namespace dcurve {
+namespace {
+
+constexpr char kMagic[4] = {'D', 'C', 'R', 'V'};
+constexpr uint16_t kVersionMajor = 0;
+constexpr uint16_t kVersionMinor = 1;
+constexpr size_t kHeaderBytes = 16;
+constexpr size_t kSectionHeaderBytes = 28;
+constexpr uint16_t kSectionRequired = 1;
+constexpr uint16_t kSectionZstd = 2;
+// A decompressed section may be at most this many times its stored size (plus a floor):
+// the bound that keeps a hostile file from asking for unbounded memory.
+constexpr uint64_t kMaxExpansion = 4096;
+constexpr uint64_t kExpansionFloor = 1u << 20;
+constexpr uint64_t kMaxRawSection = uint64_t(1) << 32;
+
+uint32_t fourcc(const char* s) {
+  return uint32_t(uint8_t(s[0])) | uint32_t(uint8_t(s[1])) << 8 | uint32_t(uint8_t(s[2])) << 16 |
+         uint32_t(uint8_t(s[3])) << 24;
+}
+std::string tag_name(uint32_t t) {
+  std::string s(4, '?');
+  for (int i = 0; i < 4; ++i) {
+    char c = char((t >> (8 * i)) & 0xff);
+    s[i] = (c >= 32 && c < 127) ? c : '?';
+  }
+  return s;
+}
+
+const uint32_t kMeta = fourcc("META");
+const uint32_t kFaces = fourcc("FACE");
+const uint32_t kCurves = fourcc("CURV");
+const uint32_t kSegments = fourcc("SEGS");
+const uint32_t kResidual = fourcc("RESI");
+
+void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
+                 int level) {
+  std::vector<uint8_t> stored(ZSTD_compressBound(raw.size()));
+  size_t n = ZSTD_compress(stored.data(), stored.size(), raw.data(), raw.size(), level);
+  bool compressed = !ZSTD_isError(n) && n < raw.size();
+  if (compressed) stored.resize(n); else stored = raw;
+  out.u32(tag);
+  out.u16(uint16_t((required ? kSectionRequired : 0) | (compressed ? kSectionZstd : 0)));
+  out.u16(0);
+  out.u64(stored.size());
+  out.u64(raw.size());
+  out.u32(crc32c(stored.data(), stored.size()));
+  out.bytes(stored.data(), stored.size());
+}
+
+std::vector<uint8_t> meta_bytes(const Model& m) {
+  ByteWriter w;
+  w.u32(m.meta.vertex_count);
+  w.u32(m.meta.frame_count);
+  w.f64(m.meta.frame_rate);
+  w.f64(m.meta.tolerance);
+  w.f64(m.meta.diag);
+  w.str(m.meta.units);
+  return std::move(w.data());
+}
+
+std::vector<uint8_t> face_bytes(const Model& m) {
+  // Delta of each index against the previous one, zigzag varint: consecutive triangles
+  // share vertices, so most deltas are small.
+  ByteWriter w;
+  w.u32(uint32_t(m.faces.size() / 3));
+  int64_t prev = 0;
+  for (uint32_t idx : m.faces) {
+    int64_t d = int64_t(idx) - prev;
+    w.varint(uint64_t((d << 1) ^ (d >> 63)));
+    prev = idx;
+  }
+  return std::move(w.data());
+}
+
+std::vector<uint8_t> curve_bytes(const Model& m) {
+  ByteWriter w;
+  const Curves& c = m.curves;
+  w.u32(c.curve_count());
+  for (uint32_t i = 0; i < c.curve_count(); ++i) w.varint(uint64_t(c.offsets[i + 1] - c.offsets[i]) << 1 | c.closed[i]);
+  int64_t prev = 0;
+  for (uint32_t v : c.vertices) {
+    int64_t d = int64_t(v) - prev;
+    w.varint(uint64_t((d << 1) ^ (d >> 63)));
+    prev = v;
+  }
+  // u as 16-bit fixed point: 1/65535 of a curve is far below any tolerance the fit sees.
+  for (float u : c.u) w.u16(uint16_t(std::lround(std::clamp(u, 0.f, 1.f) * 65535.f)));
+  return std::move(w.data());
+}
+
+std::vector<uint8_t> segment_bytes(const Model& m) {
+  ByteWriter w;
+  w.u32(uint32_t(m.segments.size()));
+  for (const Segment& s : m.segments) {
+    w.u32(s.first_frame);
+    w.u32(s.last_frame);
+    w.u8(uint8_t(s.mode));
+    for (const CurveMotion& cm : s.motion) {
+      w.u8(uint8_t(cm.basis));
+      if (cm.basis == Basis::Zero) continue;
+      w.u8(cm.basis_case);
+      w.f32(cm.time_param);
+      w.f32(cm.space_param);
+      for (float c : cm.coeffs) w.f32(c);
+    }
+  }
+  return std::move(w.data());
+}
+
+std::vector<uint8_t> residual_bytes(const Model& m) {
+  ByteWriter w;
+  w.f64(m.residual.step);
+  for (double o : m.residual.origin) w.f64(o);
+  w.varint(m.residual.payload.size());
+  w.bytes(m.residual.payload.data(), m.residual.payload.size());
+  return std::move(w.data());
+}
+
+bool fail(std::string* error, const std::string& msg) {
+  if (error) *error = msg;
+  return false;
+}
+
+bool parse_meta(ByteReader& r, Model* m) {
+  m->meta.vertex_count = r.u32();
+  m->meta.frame_count = r.u32();
+  m->meta.frame_rate = r.f64();
+  m->meta.tolerance = r.f64();
+  m->meta.diag = r.f64();
+  m->meta.units = r.str(256);
+  return r.ok;
+}
+
+bool parse_faces(ByteReader& r, Model* m) {
+  uint32_t tris = r.u32();
+  // Each index takes at least one byte, so the count is bounded by the section size.
+  if (!r.ok || uint64_t(tris) * 3 > r.remaining()) return false;
+  m->faces.resize(size_t(tris) * 3);
+  int64_t prev = 0;
+  for (auto& idx : m->faces) {
+    uint64_t z = r.varint();
+    int64_t d = int64_t(z >> 1) ^ -int64_t(z & 1);
+    prev += d;
+    if (prev < 0 || prev > UINT32_MAX) return false;
+    idx = uint32_t(prev);
+  }
+  return r.ok;
+}
+
+bool parse_curves(ByteReader& r, Model* m) {
+  Curves& c = m->curves;
+  uint32_t count = r.u32();
+  if (!r.ok || count > r.remaining()) return false;
+  c.offsets.assign(1, 0);
+  c.closed.clear();
+  uint64_t total = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    uint64_t z = r.varint();
+    total += z >> 1;
+    if (!r.ok || total > r.remaining()) return false;
+    c.offsets.push_back(uint32_t(total));
+    c.closed.push_back(uint8_t(z & 1));
+  }
+  if (total * 3 > r.remaining()) return false;  // >= 1 byte per id and 2 per u
+  c.vertices.resize(size_t(total));
+  int64_t prev = 0;
+  for (auto& v : c.vertices) {
+    uint64_t z = r.varint();
+    prev += int64_t(z >> 1) ^ -int64_t(z & 1);
+    if (prev < 0 || prev > UINT32_MAX) return false;
+    v = uint32_t(prev);
+  }
+  c.u.resize(size_t(total));
+  for (auto& u : c.u) u = float(r.u16()) / 65535.f;
+  return r.ok;
+}
+
+bool parse_segments(ByteReader& r, Model* m) {
+  uint32_t count = r.u32();
+  if (!r.ok || uint64_t(count) * 9 > r.remaining()) return false;
+  uint64_t motions = uint64_t(m->curves.curve_count()) * 3;
+  m->segments.resize(count);
+  for (Segment& s : m->segments) {
+    s.first_frame = r.u32();
+    s.last_frame = r.u32();
+    uint8_t mode = r.u8();
+    if (mode > uint8_t(FitMode::Displacement)) return false;
+    s.mode = FitMode(mode);
+    if (!r.ok || motions > r.remaining()) return false;  // >= 1 byte per motion
+    s.motion.resize(size_t(motions));
+    for (CurveMotion& cm : s.motion) {
+      uint8_t b = r.u8();
+      if (b > uint8_t(Basis::Pde32)) return false;
+      cm.basis = Basis(b);
+      if (cm.basis == Basis::Zero) continue;
+      cm.basis_case = r.u8();
+      cm.time_param = r.f32();
+      cm.space_param = r.f32();
+      cm.coeffs.resize(cm.basis == Basis::Pde8 ? 8 : 32);
+      for (float& c : cm.coeffs) c = r.f32();
+      if (!r.ok) return false;
+    }
+  }
+  return r.ok;
+}
+
+bool parse_residual(ByteReader& r, Model* m) {
+  m->residual.step = r.f64();
+  for (double& o : m->residual.origin) o = r.f64();
+  uint64_t n = r.varint();
+  const uint8_t* p = r.ok && n <= r.remaining() ? r.take(size_t(n)) : nullptr;
+  if (!p) return false;
+  m->residual.payload.assign(p, p + n);
+  return r.ok;
+}
+
+}  // namespace
+
+std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options) {
+  std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;
+  sections.emplace_back(kMeta, meta_bytes(model));
+  if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model));
+  sections.emplace_back(kCurves, curve_bytes(model));
+  sections.emplace_back(kSegments, segment_bytes(model));
+  sections.emplace_back(kResidual, residual_bytes(model));
+
+  ByteWriter out;
+  out.bytes(kMagic, 4);
+  out.u16(kVersionMajor);
+  out.u16(kVersionMinor);
+  out.u32(uint32_t(sections.size()));
+  out.u32(crc32c(out.data().data(), 12));
+  for (const auto& [tag, raw] : sections) {
+    put_section(out, tag, tag != kFaces, raw, options.zstd_level);
+  }
+  return std::move(out.data());
+}
+
+bool read_container(const uint8_t* data, size_t size, Model* model, std::string* error,
+                    std::vector<SectionInfo>* infos) {
+  *model = Model{};
+  if (infos) infos->clear();
+  ByteReader r(data, size);
+  const uint8_t* magic = r.take(4);
+  if (!magic || std::memcmp(magic, kMagic, 4) != 0) return fail(error, "not a .dcrv file (bad magic)");
+  uint16_t major = r.u16();
+  r.u16();  // minor: newer minors only add optional sections
+  uint32_t count = r.u32();
+  uint32_t crc = r.u32();
+  if (!r.ok) return fail(error, "truncated header");
+  if (crc != crc32c(data, 12)) return fail(error, "header checksum mismatch");
+  if (major != kVersionMajor) return fail(error, "unsupported format version " + std::to_string(major));
+  if (uint64_t(count) * kSectionHeaderBytes > r.remaining()) return fail(error, "section count exceeds file size");
+
+  bool seen[5] = {false, false, false, false, false};
+  const uint32_t order[5] = {kMeta, kFaces, kCurves, kSegments, kResidual};
+  std::vector<uint8_t> raw;
+  for (uint32_t i = 0; i < count; ++i) {
+    uint32_t tag = r.u32();
+    uint16_t flags = r.u16();
+    r.u16();
+    uint64_t stored = r.u64();
+    uint64_t raw_size = r.u64();
+    uint32_t section_crc = r.u32();
+    std::string name = tag_name(tag);
+    if (!r.ok) return fail(error, "truncated section header");
+    if (stored > r.remaining()) return fail(error, "section " + name + " is truncated");
+    const uint8_t* p = r.take(size_t(stored));
+    if (crc32c(p, size_t(stored)) != section_crc) return fail(error, "section " + name + " checksum mismatch");
+    if (infos) infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), stored, raw_size});
+
+    int known = -1;
+    for (int k = 0; k < 5; ++k) if (order[k] == tag) known = k;
+    if (known < 0) {
+      if (flags & kSectionRequired) return fail(error, "unknown required section " + name);
+      continue;  // unknown optional sections are skipped: room to grow
+    }
+    if (seen[known]) return fail(error, "duplicate section " + name);
+    for (int k = known + 1; k < 5; ++k)
+      if (seen[k]) return fail(error, "section " + name + " out of order");
+    seen[known] = true;
+
+    if (flags & kSectionZstd) {
+      if (raw_size > kMaxRawSection || raw_size > std::max(kExpansionFloor, stored * kMaxExpansion))
+        return fail(error, "section " + name + " claims an implausible size");
+      raw.resize(size_t(raw_size));
+      size_t n = ZSTD_decompress(raw.data(), raw.size(), p, size_t(stored));
+      if (ZSTD_isError(n) || n != raw_size) return fail(error, "section " + name + " does not decompress");
+    } else {
+      if (raw_size != stored) return fail(error, "section " + name + " size mismatch");
+      raw.assign(p, p + stored);
+    }
+    ByteReader s(raw.data(), raw.size());
+    bool ok = false;
+    if (tag == kMeta) ok = parse_meta(s, model);
+    else if (tag == kFaces) ok = parse_faces(s, model);
+    else if (tag == kCurves) ok = parse_curves(s, model);
+    else if (tag == kSegments) ok = parse_segments(s, model);
+    else if (tag == kResidual) ok = parse_residual(s, model);
+    if (!ok || s.remaining() != 0) return fail(error, "section " + name + " is malformed");
+  }
+  if (r.remaining() != 0) return fail(error, "trailing bytes after the last section");
+  for (int k : {0, 2, 3, 4})
+    if (!seen[k]) return fail(error, "missing required section " + tag_name(order[k]));
+  return validate_model(*model, error);
+}
+
+}  // namespace dcurve

@@ -1,0 +1,78 @@
+// The content of a .dcrv file, in memory: what the encoder fills, the container serializes
+// and the decoder evaluates. Plain data; every invariant is checked by codec/validate.h
+// before a decoder trusts it.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dcurve {
+
+// Which closed-form family a curve's motion uses (codec/basis.h defines the functions).
+enum class Basis : uint8_t {
+  Zero = 0,   // no motion model: the residual layer alone carries the positions
+  Pde8 = 1,   // 2022 paper: 2 time x 4 space functions, 4 sign cases
+  Pde32 = 2,  // 2024 paper: 4 time x 8 space functions
+};
+
+// What the model predicts.
+enum class FitMode : uint8_t {
+  Absolute = 0,      // positions themselves (the papers' mode)
+  Displacement = 1,  // positions minus the rest pose (reconstructed frame 0)
+};
+
+struct Metadata {
+  uint32_t vertex_count = 0;
+  uint32_t frame_count = 0;   // input frames; frame f sits at t = f / (frame_count - 1)
+  double frame_rate = 30.0;   // frames per second of the input, informative
+  double tolerance = 1e-3;    // max error the encoder promised, as a fraction of `diag`
+  double diag = 1.0;          // L: bounding-box diagonal of the rest pose (frame 0), model units
+  std::string units;          // free text, e.g. "m"; may be empty
+};
+
+// A partition of all vertices into ordered curves.
+struct Curves {
+  std::vector<uint32_t> vertices;  // size vertex_count: vertex ids, curve after curve
+  std::vector<uint32_t> offsets;   // size curve_count + 1; curve c is vertices[offsets[c], offsets[c+1])
+  std::vector<uint8_t> closed;     // size curve_count; 1 when the last vertex joins the first
+  std::vector<float> u;            // parallel to `vertices`: curve parameter in [0, 1], non-decreasing
+
+  uint32_t curve_count() const { return offsets.empty() ? 0u : uint32_t(offsets.size() - 1); }
+};
+
+// One curve's motion on one axis during one time segment.
+struct CurveMotion {
+  Basis basis = Basis::Zero;
+  uint8_t basis_case = 0;    // sign case, 0..3 for Pde8, 0 for Pde32
+  float time_param = 0.f;    // mu (Pde8) or alpha (Pde32), >= 0
+  float space_param = 0.f;   // delta (Pde8) or r (Pde32), >= 0
+  std::vector<float> coeffs; // basis term count entries (codec/basis.h gives the layout)
+};
+
+// Frames [first_frame, last_frame] share one fitted motion per curve and axis. Segments
+// tile the frame range; adjacent segments share their boundary frame.
+struct Segment {
+  uint32_t first_frame = 0;
+  uint32_t last_frame = 0;
+  FitMode mode = FitMode::Absolute;
+  std::vector<CurveMotion> motion;  // curve_count * 3 entries, index curve * 3 + axis
+};
+
+// Positions on a uniform grid, coded as integer residuals against per-frame predictions.
+// Frame f, vertex v, axis a sits at origin[a] + step * q(f, v, a) for integers q that the
+// residual layer reproduces exactly (codec/residual.h).
+struct ResidualLayer {
+  double step = 0.0;                 // grid spacing, model units, > 0
+  double origin[3] = {0.0, 0.0, 0.0};
+  std::vector<uint8_t> payload;      // the coded residual stream (format owned by codec/residual.h)
+};
+
+struct Model {
+  Metadata meta;
+  std::vector<uint32_t> faces;  // 3 vertex ids per triangle; empty when connectivity is omitted
+  Curves curves;
+  std::vector<Segment> segments;
+  ResidualLayer residual;
+};
+
+}  // namespace dcurve

@@ -1,0 +1,76 @@
+#include "codec/validate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace dcurve {
+namespace {
+bool fail(std::string* error, const std::string& msg) {
+  if (error) *error = msg;
+  return false;
+}
+bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
+}  // namespace
+
+bool validate_model(const Model& m, std::string* error) {
+  const uint32_t V = m.meta.vertex_count, F = m.meta.frame_count;
+  if (V == 0) return fail(error, "vertex count is zero");
+  if (F == 0) return fail(error, "frame count is zero");
+  if (!finite_positive(m.meta.diag)) return fail(error, "rest-pose diagonal is not a positive number");
+  if (!finite_positive(m.meta.tolerance)) return fail(error, "tolerance is not a positive number");
+  if (!std::isfinite(m.meta.frame_rate) || m.meta.frame_rate < 0) return fail(error, "frame rate is invalid");
+  uint64_t values = uint64_t(V) * F * 3;
+  uint64_t budget = std::max<uint64_t>(kMaxValuesFloor, kMaxValuesPerPayloadByte * m.residual.payload.size());
+  if (values > budget) return fail(error, "vertex and frame counts are implausible for the residual size");
+
+  if (m.faces.size() % 3 != 0) return fail(error, "face list is not made of triangles");
+  for (uint32_t idx : m.faces)
+    if (idx >= V) return fail(error, "face index out of range");
+
+  const Curves& c = m.curves;
+  if (c.offsets.empty() || c.offsets.front() != 0 || c.offsets.back() != V || c.vertices.size() != V ||
+      c.u.size() != V || c.closed.size() != c.curve_count())
+    return fail(error, "curves do not cover every vertex exactly once");
+  std::vector<uint8_t> seen(V, 0);
+  for (uint32_t v : c.vertices) {
+    if (v >= V || seen[v]) return fail(error, "curves do not cover every vertex exactly once");
+    seen[v] = 1;
+  }
+  for (uint32_t k = 0; k < c.curve_count(); ++k) {
+    if (c.offsets[k + 1] <= c.offsets[k]) return fail(error, "empty curve");
+    for (uint32_t i = c.offsets[k]; i < c.offsets[k + 1]; ++i) {
+      if (!(c.u[i] >= 0.f && c.u[i] <= 1.f)) return fail(error, "curve parameter u outside [0,1]");
+      if (i > c.offsets[k] && c.u[i] < c.u[i - 1]) return fail(error, "curve parameter u decreases along a curve");
+    }
+  }
+
+  uint32_t expect_first = 0;
+  for (const Segment& s : m.segments) {
+    if (s.first_frame != expect_first || s.last_frame < s.first_frame || s.last_frame >= F)
+      return fail(error, "time segments do not tile the frame range");
+    expect_first = s.last_frame;
+    if (s.motion.size() != size_t(c.curve_count()) * 3) return fail(error, "segment motion count mismatch");
+    for (const CurveMotion& cm : s.motion) {
+      if (cm.basis == Basis::Zero) continue;
+      size_t terms = cm.basis == Basis::Pde8 ? 8 : 32;
+      if (cm.coeffs.size() != terms) return fail(error, "coefficient count mismatch");
+      if ((cm.basis == Basis::Pde8 && cm.basis_case > 3) || (cm.basis == Basis::Pde32 && cm.basis_case != 0))
+        return fail(error, "basis case out of range");
+      if (!(std::isfinite(cm.time_param) && cm.time_param >= 0 && cm.time_param <= 1e3f &&
+            std::isfinite(cm.space_param) && cm.space_param >= 0 && cm.space_param <= 1e3f))
+        return fail(error, "basis parameter out of range");
+      for (float v : cm.coeffs)
+        if (!std::isfinite(v)) return fail(error, "coefficient is not finite");
+    }
+  }
+  if (!m.segments.empty() && m.segments.back().last_frame != (F > 1 ? F - 1 : 0))
+    return fail(error, "time segments do not reach the last frame");
+
+  if (!finite_positive(m.residual.step)) return fail(error, "residual grid step is not a positive number");
+  for (double o : m.residual.origin)
+    if (!std::isfinite(o)) return fail(error, "residual grid origin is not finite");
+  return true;
+}
+
+}  // namespace dcurve

@@ -1,0 +1,2 @@
+// Placeholder translation unit so the corpus library exists before the scenes land.
+namespace dcurve::corpus {}

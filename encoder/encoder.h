@@ -1,0 +1,38 @@
+// The encoder's entry point: an animation in, a .dcrv file out, within a max error.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "encoder/io/frames.h"
+#include "encoder/metrics.h"
+
+namespace dcurve {
+
+struct EncodeOptions {
+  double tolerance = 1e-3;    // max error, fraction of the rest-pose bounding-box diagonal, in (0, 0.5]
+  bool connectivity = true;   // store faces in the file
+  int threads = 0;            // 0: all hardware threads; output bytes never depend on it
+  std::function<void(double)> progress;  // called with the fraction done in [0, 1]; may be empty
+};
+
+struct EncodeReport {
+  uint64_t bytes = 0;
+  uint64_t motion_bytes = 0;        // everything but the connectivity section
+  uint64_t connectivity_bytes = 0;
+  uint32_t vertices = 0, frames = 0, curves = 0, segments = 0;
+  double bpvf = 0;                  // file bits / (vertices * frames)
+  ErrorStats error;                 // measured by decoding the written bytes
+  double encode_seconds = 0;
+  // Curve extraction report (issue 5 keys).
+  double mean_points_per_curve = 0, median_points_per_curve = 0;
+  double short_curve_vertex_fraction = 0, mean_turning_angle_deg = 0;
+};
+
+// Encodes `anim` into `out`. The returned error stats come from decoding `out` with the
+// runtime decoder (closed loop); the call fails if they break the tolerance.
+bool encode_animation(const Animation& anim, const EncodeOptions& options, std::vector<uint8_t>* out,
+                      EncodeReport* report, std::string* error);
+
+}  // namespace dcurve
