@@ -27,6 +27,11 @@ constexpr uint32_t kFileRequiredFlagsMask = 0xffffu;
 // the bound that keeps a hostile file from asking for unbounded memory.
 constexpr uint64_t kMaxExpansion = 4096;
 constexpr uint64_t kExpansionFloor = 1u << 20;
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+constexpr bool kVerifyChecksums = false;  // lets a fuzzer's mutations reach the parsers
+#else
+constexpr bool kVerifyChecksums = true;
+#endif
 constexpr uint64_t kMaxRawSection = uint64_t(1) << 32;
 
 uint32_t fourcc(const char* s) {
@@ -264,7 +269,7 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
   uint32_t count = r.u32();
   uint32_t crc = r.u32();
   if (!r.ok) return fail(error, "truncated header (" + std::to_string(size) + " bytes)");
-  if (crc != crc32c(data, kHeaderBytes - 4)) return fail(error, "header checksum mismatch");
+  if (crc != crc32c(data, kHeaderBytes - 4) && kVerifyChecksums) return fail(error, "header checksum mismatch");
   if (major != kFormatVersionMajor) return fail(error, "unsupported format version " + std::to_string(major));
   if (file_flags & kFileRequiredFlagsMask) return fail(error, "file requires features this decoder does not know");
   if (uint64_t(count) * kSectionHeaderBytes > r.remaining()) return fail(error, "section count exceeds file size");
@@ -285,7 +290,8 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     if (stored > r.remaining()) return fail(error, "section " + name + " is truncated");
     const uint8_t* p = r.take(size_t(stored));
     uint32_t crc_head = crc32c(data + header_at, kSectionHeaderBytes - 4);
-    if (crc32c(p, size_t(stored), crc_head) != section_crc) return fail(error, "section " + name + " checksum mismatch");
+    if (crc32c(p, size_t(stored), crc_head) != section_crc && kVerifyChecksums)
+      return fail(error, "section " + name + " checksum mismatch");
     if (flags & ~kSectionKnownFlags) return fail(error, "section " + name + " has unknown flags");
     if (infos) infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), stored, raw_size});
 

@@ -34,8 +34,14 @@ std::unique_ptr<Decoder> Decoder::open_memory(const void* data, size_t size, std
   if (!read_container(static_cast<const uint8_t*>(data), size, &impl->model, error)) return nullptr;
   std::vector<int32_t> q;
   const Model& m = impl->model;
-  if (m.residual.step > 0 && !decode_residuals(m, &q, error)) return nullptr;
+  // zstd can expand a section 4096-fold, so the residual's own bound is checked against the
+  // file size too, before the grid is allocated.
   const uint64_t budget = std::max(kMaxTableFloatsFloor, kMaxTableFloatsPerFileByte * uint64_t(size));
+  if (uint64_t(m.meta.vertex_count) * m.meta.frame_count * 3 > budget) {
+    if (error) *error = "vertex and frame counts are implausible for the file size";
+    return nullptr;
+  }
+  if (m.residual.step > 0 && !decode_residuals(m, &q, error)) return nullptr;
   if (!impl->evaluator.build(m, q, budget, error)) return nullptr;
   return std::unique_ptr<Decoder>(new Decoder(std::move(impl)));
 }
