@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "codec/basis.h"
 #include "codec/bytes.h"
 #include "codec/crc32.h"
 #include "codec/faces.h"
@@ -213,7 +214,7 @@ bool parse_segments(ByteReader& r, Model* m) {
       cm.basis_case = r.u8();
       cm.time_param = r.f32();
       cm.space_param = r.f32();
-      cm.coeffs.resize(cm.basis == Basis::Pde8 ? 8 : 32);
+      cm.coeffs.resize(size_t(basis_term_count(cm.basis)));
       for (float& c : cm.coeffs) c = r.f32();
       if (!r.ok) return false;
     }

@@ -1,5 +1,7 @@
 #include "codec/validate.h"
 
+#include "codec/basis.h"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -60,12 +62,11 @@ bool validate_model(const Model& m, std::string* error) {
     if (s.motion.size() != size_t(c.curve_count()) * 3) return fail(error, "segment motion count mismatch");
     for (const CurveMotion& cm : s.motion) {
       if (cm.basis == Basis::Zero) continue;
-      size_t terms = cm.basis == Basis::Pde8 ? 8 : 32;
-      if (cm.coeffs.size() != terms) return fail(error, "coefficient count mismatch");
+      if (cm.coeffs.size() != size_t(basis_term_count(cm.basis))) return fail(error, "coefficient count mismatch");
       if ((cm.basis == Basis::Pde8 && cm.basis_case > 3) || (cm.basis == Basis::Pde32 && cm.basis_case != 0))
         return fail(error, "basis case out of range");
-      if (!(std::isfinite(cm.time_param) && cm.time_param >= 0 && cm.time_param <= 1e3f &&
-            std::isfinite(cm.space_param) && cm.space_param >= 0 && cm.space_param <= 1e3f))
+      if (!(std::isfinite(cm.time_param) && cm.time_param >= 0 && cm.time_param <= kBasisMaxParam &&
+            std::isfinite(cm.space_param) && cm.space_param >= 0 && cm.space_param <= kBasisMaxParam))
         return fail(error, "basis parameter out of range");
       for (float v : cm.coeffs)
         if (!std::isfinite(v)) return fail(error, "coefficient is not finite");

@@ -3,12 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#if __has_include("codec/basis.h")
 #include "codec/basis.h"
-#define DCURVE_HAS_BASIS 1
-#else
-#define DCURVE_HAS_BASIS 0
-#endif
 
 namespace dcurve {
 namespace {
@@ -43,12 +38,8 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
     for (size_t k = 0; k < s.motion.size(); ++k) {
       const CurveMotion& cm = s.motion[k];
       if (cm.basis == Basis::Zero) continue;
-#if DCURVE_HAS_BASIS
       uint32_t c = uint32_t(k / 3);
       weight_floats += uint64_t(m.curves.offsets[c + 1] - m.curves.offsets[c]) * basis_time_count(cm.basis);
-#else
-      return fail(error, "file uses a PDE motion model, which this decoder build cannot evaluate");
-#endif
     }
     if (correction_floats + weight_floats > max_floats)
       return fail(error, "decoded tables would need " + std::to_string(correction_floats + weight_floats) +
@@ -59,7 +50,7 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
   motions_.clear();
   corrections_.assign(size_t(correction_floats), 0.f);
   weights_.assign(size_t(weight_floats), 0.f);
-  [[maybe_unused]] size_t weights_at = 0;
+  size_t weights_at = 0;
   size_t corrections_at = 0;
   for (const Segment& s : *segments) {
     Span span;
@@ -69,7 +60,6 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
     for (size_t k = 0; k < s.motion.size(); ++k) {
       const CurveMotion& cm = s.motion[k];
       if (cm.basis == Basis::Zero) continue;
-#if DCURVE_HAS_BASIS
       Motion mo;
       mo.curve = uint32_t(k / 3);
       mo.axis = uint8_t(k % 3);
@@ -92,7 +82,6 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
         }
       }
       motions_.push_back(mo);
-#endif
     }
     span.motions_end = motions_.size();
     if (has_residual) {
@@ -118,7 +107,6 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
 }
 
 void FrameEvaluator::apply_model(const Span& span, double tau, float sign, float* out) const {
-#if DCURVE_HAS_BASIS
   for (size_t k = span.motions_begin; k < span.motions_end; ++k) {
     const Motion& mo = motions_[k];
     double time[kMaxTimeTerms] = {0, 0, 0, 0};
@@ -135,9 +123,6 @@ void FrameEvaluator::apply_model(const Span& span, double tau, float sign, float
       out[size_t(ids[j]) * 3 + mo.axis] += sign * sum;
     }
   }
-#else
-  (void)span, (void)tau, (void)sign, (void)out;
-#endif
 }
 
 void FrameEvaluator::evaluate(double x, float* out) const {

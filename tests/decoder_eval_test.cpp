@@ -189,5 +189,78 @@ TEST(DecoderEval, EncodedFramesAreTheQuantizedInputBitExact) {
   }
 }
 
+// PDE segments: the decoder's precomputed tables against the spec's formula evaluated in
+// double with codec/basis.h directly, at frames, between frames and across boundaries.
+TEST(DecoderEval, PdeSegmentsFollowTheSpecFormula) {
+  for (FitMode mode : {FitMode::Absolute, FitMode::Displacement}) {
+    Model m = small_model(9, {0, 3, 8});
+    testing::add_pde_motions(&m, 5);
+    for (Segment& s : m.segments) s.mode = mode;
+    auto d = open(m);
+    ASSERT_TRUE(d);
+    std::vector<float> xyz(18);
+    for (int k = 0; k <= 64; ++k) {
+      const double x = 8.0 * k / 64;
+      d->evaluate(x / 8.0, xyz.data());
+      for (uint32_t v = 0; v < 6; ++v)
+        for (int a = 0; a < 3; ++a) {
+          const double ref = testing::reference_position(m, x, v, a);
+          EXPECT_NEAR(xyz[v * 3 + a], ref, 2e-5 * (1 + std::abs(ref))) << "x " << x << " v " << v << " a " << a;
+        }
+    }
+    for (uint32_t f = 0; f < 9; ++f) {
+      d->evaluate_frame(f, xyz.data());
+      for (uint32_t v = 0; v < 6; ++v)
+        for (int a = 0; a < 3; ++a) {
+          const double grid = grid_position(m, f, v, a);
+          // One float rounding of the model plus one of the correction, nothing more.
+          EXPECT_NEAR(xyz[v * 3 + a], grid, 4e-7 * (8 + std::abs(grid))) << f;
+        }
+    }
+  }
+}
+
+// Approaching a shared boundary frame from either side gives the same positions: each side
+// blends corrections computed with its own segment's model.
+TEST(DecoderEval, NoJumpAtSegmentBoundaries) {
+  Model m = small_model(9, {0, 3, 8});
+  testing::add_pde_motions(&m, 9);
+  auto d = open(m);
+  ASSERT_TRUE(d);
+  std::vector<float> before(18), at(18), after(18);
+  const double eps = 1e-7;
+  d->evaluate((3 - eps) / 8, before.data());
+  d->evaluate(3.0 / 8, at.data());
+  d->evaluate((3 + eps) / 8, after.data());
+  for (int i = 0; i < 18; ++i) {
+    EXPECT_NEAR(before[i], at[i], 1e-4) << i;
+    EXPECT_NEAR(after[i], at[i], 1e-4) << i;
+  }
+}
+
+// Without a residual layer the output is the model alone.
+TEST(DecoderEval, ModelOnlyFileEvaluatesTheModel) {
+  Model m = small_model(5, {0, 4});
+  testing::add_pde_motions(&m, 3);
+  m.residual = ResidualLayer{};
+  std::vector<uint8_t> bytes = write_container(m);
+  std::string err;
+  auto d = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+  ASSERT_TRUE(d) << err;
+  std::vector<float> xyz(18);
+  for (double t : {0.0, 0.3, 1.0}) {
+    d->evaluate(t, xyz.data());
+    for (uint32_t v = 0; v < 6; ++v)
+      for (int a = 0; a < 3; ++a) {
+        const double ref = testing::segment_model(m, m.segments[0], 4 * t, v, a);
+        EXPECT_NEAR(xyz[v * 3 + a], ref, 1e-5 * (1 + std::abs(ref)));
+      }
+  }
+  m.segments[0].mode = FitMode::Displacement;  // needs a rest pose, which needs the residual
+  bytes = write_container(m);
+  EXPECT_FALSE(Decoder::open_memory(bytes.data(), bytes.size(), &err));
+  EXPECT_NE(err.find("rest pose"), std::string::npos) << err;
+}
+
 }  // namespace
 }  // namespace dcurve

@@ -2,8 +2,13 @@
 // value comes from a closed formula, so expected positions are computed here, independently
 // of the decoder.
 #pragma once
+#include <algorithm>
 #include <cstdint>
+#include <random>
 #include <vector>
+
+#include "codec/basis.h"
+#include "codec/container.h"
 
 #include "codec/model.h"
 #include "codec/residual.h"
@@ -40,7 +45,8 @@ inline Model small_model(uint32_t F, const std::vector<uint32_t>& segment_frames
   m.curves.vertices = {4, 0, 2, 5, 1, 3};
   m.curves.offsets = {0, 3, 6};
   m.curves.closed = {0, 1};
-  m.curves.u = {0.f, 0.5f, 1.f, 0.f, 0.25f, 0.75f};
+  // As a reader returns them (16-bit fixed point), so double references see the same u.
+  for (float u : {0.f, 0.5f, 1.f, 0.f, 0.25f, 0.75f}) m.curves.u.push_back(quantize_curve_u(u));
   for (size_t k = 1; k < segment_frames.size(); ++k) {
     Segment s;
     s.first_frame = segment_frames[k - 1];
@@ -59,6 +65,70 @@ inline Model small_model(uint32_t F, const std::vector<uint32_t>& segment_frames
 // Exact position of the small model at frame f (origin + step * q), in double.
 inline double grid_position(const Model& m, uint32_t f, uint32_t v, int a) {
   return m.residual.origin[a] + m.residual.step * grid_value(f, v, a);
+}
+
+// Gives every segment motion a PDE model with deterministic parameters and coefficients:
+// cycles through Pde8 cases 0..3, Pde32 and Zero, parameters on both sides of the basis
+// switch value (8), coefficients of about a grid step or two.
+inline void add_pde_motions(Model* m, uint32_t seed = 1) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> coeff(-0.5f, 0.5f);
+  const float params[] = {0.f, 0.3f, 2.5f, 9.f, 20.f};
+  int k = 0;
+  for (Segment& s : m->segments)
+    for (CurveMotion& cm : s.motion) {
+      const int kind = k++ % 6;
+      cm = CurveMotion{};
+      if (kind == 5) continue;  // Zero
+      cm.basis = kind < 4 ? Basis::Pde8 : Basis::Pde32;
+      cm.basis_case = uint8_t(kind < 4 ? kind : 0);
+      cm.time_param = params[rng() % 5];
+      cm.space_param = params[rng() % 5];
+      cm.coeffs.resize(size_t(basis_term_count(cm.basis)));
+      for (float& c : cm.coeffs) c = coeff(rng);
+    }
+}
+
+// Curve c of vertex v and its position j in curves.vertices.
+inline void locate(const Model& m, uint32_t v, uint32_t* c, uint32_t* j) {
+  for (*c = 0; *c < m.curves.curve_count(); ++*c)
+    for (*j = m.curves.offsets[*c]; *j < m.curves.offsets[*c + 1]; ++*j)
+      if (m.curves.vertices[*j] == v) return;
+}
+
+// M_s at frame coordinate x for segment `seg` (model units, rest pose included).
+inline double segment_model(const Model& m, const Segment& seg, double x, uint32_t v, int a) {
+  const uint32_t len = seg.last_frame - seg.first_frame;
+  const double tau = len ? (x - seg.first_frame) / len : 0.0;
+  uint32_t c = 0, j = 0;
+  locate(m, v, &c, &j);
+  double value = evaluate_motion(seg.motion[c * 3 + a], tau, m.curves.u[j]);
+  if (seg.mode == FitMode::Displacement) value += grid_position(m, 0, v, a);
+  return value;
+}
+
+// The model part of the output (format_spec/dcrv.md, "Evaluation") in double: segment
+// chosen by the later-wins rule, plus the rest pose for displacement segments.
+inline const Segment& segment_at(const Model& m, double x) {
+  const Segment* seg = &m.segments[0];
+  for (const Segment& s : m.segments)
+    if (double(s.first_frame) <= x) seg = &s;
+  return *seg;
+}
+
+// The whole reference output at frame coordinate x, written from the spec's formulas:
+// M_s(x) + lerp(X_i - M_s(i), X_{i+1} - M_s(i+1), w), s the segment x falls in (later wins).
+inline double reference_position(const Model& m, double x, uint32_t v, int a) {
+  const Segment& seg = segment_at(m, x);
+  const uint32_t len = seg.last_frame - seg.first_frame;
+  uint32_t i = seg.first_frame;
+  double w = 0;
+  if (len) {
+    i = std::min(uint32_t(x), seg.last_frame - 1);
+    w = x - i;
+  }
+  auto correction = [&](uint32_t f) { return grid_position(m, f, v, a) - segment_model(m, seg, f, v, a); };
+  return segment_model(m, seg, x, v, a) + (1 - w) * correction(i) + (w != 0 ? w * correction(i + 1) : 0.0);
 }
 
 }  // namespace dcurve::testing
