@@ -64,8 +64,10 @@ std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, boo
 }
 
 std::vector<uint8_t> face_bytes(const Model& m, const WriteOptions& options) {
+  using Layout = WriteOptions::FaceLayout;
+  if (options.face_layout == Layout::Traversal) return encode_faces(m.faces, FaceOrder::Traversal);
   std::vector<uint8_t> exact = encode_faces(m.faces, FaceOrder::Exact);
-  if (options.keep_triangle_order) return exact;
+  if (options.face_layout == Layout::Exact) return exact;
   std::vector<uint8_t> traversal = encode_faces(m.faces, FaceOrder::Traversal);
   bool unused;
   return stored_form(traversal, options.zstd_level, &unused).size() <

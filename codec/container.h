@@ -16,9 +16,10 @@ constexpr uint16_t kFormatVersionMinor = 0;
 
 struct WriteOptions {
   bool connectivity = true;  // store faces; engines that already hold the mesh can drop them
-  // Vertex ids are never renumbered. When false the writer may also reorder triangles and
-  // rotate their corners (windings kept) if that codes smaller (codec/faces.h).
-  bool keep_triangle_order = false;
+  // Vertex ids are never renumbered. Smallest may reorder triangles and rotate their corners
+  // (windings kept) when that codes smaller; Exact keeps the list as given (codec/faces.h).
+  enum class FaceLayout { Smallest, Exact, Traversal };
+  FaceLayout face_layout = FaceLayout::Smallest;
   int zstd_level = 19;       // 1..22
 };
 

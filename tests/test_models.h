@@ -107,13 +107,27 @@ inline double segment_model(const Model& m, const Segment& seg, double x, uint32
   return value;
 }
 
-// The model part of the output (format_spec/dcrv.md, "Evaluation") in double: segment
-// chosen by the later-wins rule, plus the rest pose for displacement segments.
+// The segment frame coordinate x falls in (later wins on a shared frame).
 inline const Segment& segment_at(const Model& m, double x) {
   const Segment* seg = &m.segments[0];
   for (const Segment& s : m.segments)
     if (double(s.first_frame) <= x) seg = &s;
   return *seg;
+}
+
+// The reference output for any file the helpers make: linear interpolation of the grid when
+// there are no segments, the model alone when there is no residual layer, else
+// reference_position below.
+inline double reference_position(const Model& m, double x, uint32_t v, int a);
+inline double expected_position(const Model& m, double x, uint32_t v, int a) {
+  if (m.segments.empty()) {
+    const uint32_t F = m.meta.frame_count;
+    const uint32_t i = F > 1 ? std::min(uint32_t(x), F - 2) : 0;
+    const double w = F > 1 ? x - i : 0.0;
+    return (1 - w) * grid_position(m, i, v, a) + (w != 0 ? w * grid_position(m, i + 1, v, a) : 0.0);
+  }
+  if (m.residual.step == 0) return segment_model(m, segment_at(m, x), x, v, a);
+  return reference_position(m, x, v, a);
 }
 
 // The whole reference output at frame coordinate x, written from the spec's formulas:
