@@ -57,31 +57,39 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
     span.first = s.first_frame;
     span.last = s.last_frame;
     span.motions_begin = motions_.size();
-    for (size_t k = 0; k < s.motion.size(); ++k) {
-      const CurveMotion& cm = s.motion[k];
-      if (cm.basis == Basis::Zero) continue;
-      Motion mo;
-      mo.curve = uint32_t(k / 3);
-      mo.axis = uint8_t(k % 3);
-      mo.basis = cm.basis;
-      mo.basis_case = cm.basis_case;
-      mo.time_param = cm.time_param;
-      const int tc = basis_time_count(cm.basis), sc = basis_space_count(cm.basis);
-      if (tc > kMaxTimeTerms || sc > kMaxSpaceTerms || cm.coeffs.size() != size_t(tc) * sc)
-        return fail(error, "motion basis term counts do not match the coefficients");
-      mo.time_count = uint8_t(tc);
-      mo.weights_at = weights_at;
-      const uint32_t begin = m.curves.offsets[mo.curve], end = m.curves.offsets[mo.curve + 1];
-      for (uint32_t j = begin; j < end; ++j) {
-        double space[kMaxSpaceTerms];
-        basis_space(cm.basis, cm.basis_case, cm.space_param, m.curves.u[j], space);
-        for (int it = 0; it < tc; ++it) {
-          double acc = 0;
-          for (int is = 0; is < sc; ++is) acc += double(cm.coeffs[size_t(it) * sc + is]) * space[is];
-          weights_[weights_at++] = float(acc);
-        }
+    for (uint32_t c = 0; c < s.motion.size() / 3; ++c) {
+      CurveModel cmod;
+      cmod.curve = c;
+      for (uint8_t a = 0; a < 3; ++a) {
+        const CurveMotion& cm = s.motion[size_t(c) * 3 + a];
+        if (cm.basis == Basis::Zero) continue;
+        const int tc = basis_time_count(cm.basis), sc = basis_space_count(cm.basis);
+        if (tc > kMaxTimeTerms || sc > kMaxSpaceTerms || cm.coeffs.size() != size_t(tc) * sc)
+          return fail(error, "motion basis term counts do not match the coefficients");
+        const uint8_t k = cmod.axes++;
+        cmod.axis[k] = a;
+        cmod.basis[k] = cm.basis;
+        cmod.basis_case[k] = cm.basis_case;
+        cmod.time_param[k] = cm.time_param;
+        cmod.time_count[k] = uint8_t(tc);
+        cmod.stride = uint8_t(cmod.stride + tc);
       }
-      motions_.push_back(mo);
+      if (cmod.axes == 0) continue;
+      cmod.weights_at = weights_at;
+      const uint32_t begin = m.curves.offsets[c], end = m.curves.offsets[c + 1];
+      for (uint32_t j = begin; j < end; ++j)
+        for (uint8_t k = 0; k < cmod.axes; ++k) {
+          const CurveMotion& cm = s.motion[size_t(c) * 3 + cmod.axis[k]];
+          const int tc = cmod.time_count[k], sc = basis_space_count(cm.basis);
+          double space[kMaxSpaceTerms];
+          basis_space(cm.basis, cm.basis_case, cm.space_param, m.curves.u[j], space);
+          for (int it = 0; it < tc; ++it) {
+            double acc = 0;
+            for (int is = 0; is < sc; ++is) acc += double(cm.coeffs[size_t(it) * sc + is]) * space[is];
+            weights_[weights_at++] = float(acc);
+          }
+        }
+      motions_.push_back(cmod);
     }
     span.motions_end = motions_.size();
     if (has_residual) {
@@ -97,8 +105,6 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
     }
     spans_.push_back(span);
   }
-  for (const Motion& mo : motions_)
-    if (!std::isfinite(mo.time_param)) return fail(error, "motion time parameter is not finite");
   for (float w : weights_)
     if (!std::isfinite(w)) return fail(error, "motion model overflows at some vertex");
   for (float d : corrections_)
@@ -106,21 +112,49 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
   return true;
 }
 
+namespace {
+// The per-vertex kernel for the common case, every axis of the curve on a basis with TC time
+// functions: fixed trip counts let the compiler unroll it to 3 * TC multiply-adds.
+template <int TC>
+void add_curve3(const float (*time)[kMaxTimeTerms], const float* w, const uint32_t* ids, uint32_t n, float sign,
+                float* out) {
+  for (uint32_t j = 0; j < n; ++j, w += 3 * TC) {
+    float* o = out + size_t(ids[j]) * 3;
+    for (int a = 0; a < 3; ++a) {
+      float sum = 0.f;
+      for (int i = 0; i < TC; ++i) sum += time[a][i] * w[a * TC + i];
+      o[a] += sign * sum;
+    }
+  }
+}
+}  // namespace
+
 void FrameEvaluator::apply_model(const Span& span, double tau, float sign, float* out) const {
   for (size_t k = span.motions_begin; k < span.motions_end; ++k) {
-    const Motion& mo = motions_[k];
-    double time[kMaxTimeTerms] = {0, 0, 0, 0};
-    basis_time(mo.basis, mo.basis_case, mo.time_param, tau, time);
-    float tf[kMaxTimeTerms];
-    for (int i = 0; i < kMaxTimeTerms; ++i) tf[i] = float(time[i]);
-    const uint32_t begin = curves_->offsets[mo.curve], end = curves_->offsets[mo.curve + 1];
-    const uint32_t* ids = curves_->vertices.data();
-    const float* w = weights_.data() + mo.weights_at;
-    const int tc = mo.time_count;
-    for (uint32_t j = begin; j < end; ++j, w += tc) {
-      float sum = 0.f;
-      for (int i = 0; i < tc; ++i) sum += tf[i] * w[i];
-      out[size_t(ids[j]) * 3 + mo.axis] += sign * sum;
+    const CurveModel& cm = motions_[k];
+    float time[3][kMaxTimeTerms];
+    for (int a = 0; a < cm.axes; ++a) {
+      double t[kMaxTimeTerms] = {0, 0, 0, 0};
+      basis_time(cm.basis[a], cm.basis_case[a], cm.time_param[a], tau, t);
+      for (int i = 0; i < kMaxTimeTerms; ++i) time[a][i] = float(t[i]);
+    }
+    const uint32_t begin = curves_->offsets[cm.curve], end = curves_->offsets[cm.curve + 1];
+    const uint32_t* ids = curves_->vertices.data() + begin;
+    const float* w = weights_.data() + cm.weights_at;
+    if (cm.axes == 3 && cm.stride == 6) {
+      add_curve3<2>(time, w, ids, end - begin, sign, out);
+    } else if (cm.axes == 3 && cm.stride == 12) {
+      add_curve3<4>(time, w, ids, end - begin, sign, out);
+    } else {
+      // Mixed bases or Zero axes: the same sums with run-time trip counts.
+      for (uint32_t j = 0; j < end - begin; ++j) {
+        float* o = out + size_t(ids[j]) * 3;
+        for (int a = 0; a < cm.axes; ++a) {
+          float sum = 0.f;
+          for (int i = 0; i < cm.time_count[a]; ++i) sum += time[a][i] * *w++;
+          o[cm.axis[a]] += sign * sum;
+        }
+      }
     }
   }
 }

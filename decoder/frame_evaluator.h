@@ -26,16 +26,20 @@ class FrameEvaluator {
   uint64_t table_floats() const { return corrections_.size() + weights_.size(); }
 
  private:
-  // One curve's motion on one axis in one segment, with its per-vertex weights: the
-  // coefficients already contracted with the space functions at each vertex's u.
-  struct Motion {
+  // One curve's motions (its non-Zero axes) in one segment, with per-vertex weights: the
+  // coefficients already contracted with the space functions at each vertex's u. Weights of
+  // one vertex sit together (axis after axis, time_count each), so one pass over the curve
+  // updates all three coordinates.
+  struct CurveModel {
     uint32_t curve = 0;
-    uint8_t axis = 0;
-    Basis basis = Basis::Zero;
-    uint8_t basis_case = 0;
-    double time_param = 0;
-    uint8_t time_count = 0;
-    size_t weights_at = 0;  // into weights_: curve length * time_count floats
+    uint8_t axes = 0;  // active axes, 1..3
+    uint8_t axis[3] = {0, 0, 0};
+    Basis basis[3] = {Basis::Zero, Basis::Zero, Basis::Zero};
+    uint8_t basis_case[3] = {0, 0, 0};
+    double time_param[3] = {0, 0, 0};
+    uint8_t time_count[3] = {0, 0, 0};
+    uint8_t stride = 0;     // weights per vertex: sum of time_count
+    size_t weights_at = 0;  // into weights_: curve length * stride floats
   };
   struct Span {
     uint32_t first = 0, last = 0;  // frames covered
@@ -52,7 +56,7 @@ class FrameEvaluator {
   uint32_t frame_count_ = 0;
   const Curves* curves_ = nullptr;
   std::vector<Span> spans_;
-  std::vector<Motion> motions_;
+  std::vector<CurveModel> motions_;
   std::vector<float> weights_;
   std::vector<float> corrections_;
 };
