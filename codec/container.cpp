@@ -6,24 +6,33 @@
 #include <cmath>
 #include <cstring>
 
+#include "codec/basis.h"
 #include "codec/bytes.h"
 #include "codec/crc32.h"
+#include "codec/faces.h"
 #include "codec/validate.h"
 
 namespace dcurve {
 namespace {
 
 constexpr char kMagic[4] = {'D', 'C', 'R', 'V'};
-constexpr uint16_t kVersionMajor = 0;
-constexpr uint16_t kVersionMinor = 1;
-constexpr size_t kHeaderBytes = 16;
+constexpr size_t kHeaderBytes = 20;
 constexpr size_t kSectionHeaderBytes = 28;
 constexpr uint16_t kSectionRequired = 1;
 constexpr uint16_t kSectionZstd = 2;
+constexpr uint16_t kSectionKnownFlags = kSectionRequired | kSectionZstd;
+// File flags: the low 16 bits name features a reader must understand (none in 1.0), the
+// high 16 bits are hints a reader may ignore.
+constexpr uint32_t kFileRequiredFlagsMask = 0xffffu;
 // A decompressed section may be at most this many times its stored size (plus a floor):
 // the bound that keeps a hostile file from asking for unbounded memory.
 constexpr uint64_t kMaxExpansion = 4096;
 constexpr uint64_t kExpansionFloor = 1u << 20;
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+constexpr bool kVerifyChecksums = false;  // lets a fuzzer's mutations reach the parsers
+#else
+constexpr bool kVerifyChecksums = true;
+#endif
 constexpr uint64_t kMaxRawSection = uint64_t(1) << 32;
 
 uint32_t fourcc(const char* s) {
@@ -45,18 +54,42 @@ const uint32_t kCurves = fourcc("CURV");
 const uint32_t kSegments = fourcc("SEGS");
 const uint32_t kResidual = fourcc("RESI");
 
-void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
-                 int level) {
+// The bytes a section stores: zstd when that is smaller, else the raw bytes.
+std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, bool* compressed) {
   std::vector<uint8_t> stored(ZSTD_compressBound(raw.size()));
   size_t n = ZSTD_compress(stored.data(), stored.size(), raw.data(), raw.size(), level);
-  bool compressed = !ZSTD_isError(n) && n < raw.size();
-  if (compressed) stored.resize(n); else stored = raw;
+  *compressed = !ZSTD_isError(n) && n < raw.size();
+  if (*compressed) stored.resize(n); else stored = raw;
+  return stored;
+}
+
+std::vector<uint8_t> face_bytes(const Model& m, const WriteOptions& options) {
+  using Layout = WriteOptions::FaceLayout;
+  if (options.face_layout == Layout::Traversal) return encode_faces(m.faces, FaceOrder::Traversal);
+  std::vector<uint8_t> exact = encode_faces(m.faces, FaceOrder::Exact);
+  if (options.face_layout == Layout::Exact) return exact;
+  std::vector<uint8_t> traversal = encode_faces(m.faces, FaceOrder::Traversal);
+  bool unused;
+  return stored_form(traversal, options.zstd_level, &unused).size() <
+                 stored_form(exact, options.zstd_level, &unused).size()
+             ? traversal
+             : exact;
+}
+
+void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
+                 int level) {
+  bool compressed = false;
+  std::vector<uint8_t> stored = stored_form(raw, level, &compressed);
+  const size_t header_at = out.size();
   out.u32(tag);
   out.u16(uint16_t((required ? kSectionRequired : 0) | (compressed ? kSectionZstd : 0)));
   out.u16(0);
   out.u64(stored.size());
   out.u64(raw.size());
-  out.u32(crc32c(stored.data(), stored.size()));
+  // The checksum covers the section header too: a flipped tag or flag must not turn a
+  // section into an unknown optional one that a reader would silently skip.
+  uint32_t crc = crc32c(out.data().data() + header_at, kSectionHeaderBytes - 4);
+  out.u32(crc32c(stored.data(), stored.size(), crc));
   out.bytes(stored.data(), stored.size());
 }
 
@@ -71,19 +104,9 @@ std::vector<uint8_t> meta_bytes(const Model& m) {
   return std::move(w.data());
 }
 
-std::vector<uint8_t> face_bytes(const Model& m) {
-  // Delta of each index against the previous one, zigzag varint: consecutive triangles
-  // share vertices, so most deltas are small.
-  ByteWriter w;
-  w.u32(uint32_t(m.faces.size() / 3));
-  int64_t prev = 0;
-  for (uint32_t idx : m.faces) {
-    int64_t d = int64_t(idx) - prev;
-    w.varint(uint64_t((d << 1) ^ (d >> 63)));
-    prev = idx;
-  }
-  return std::move(w.data());
-}
+
+uint16_t u_to_fixed(float u) { return uint16_t(std::lround(std::clamp(u, 0.f, 1.f) * 65535.f)); }
+float u_from_fixed(uint16_t q) { return float(q) / 65535.f; }
 
 std::vector<uint8_t> curve_bytes(const Model& m) {
   ByteWriter w;
@@ -97,7 +120,7 @@ std::vector<uint8_t> curve_bytes(const Model& m) {
     prev = v;
   }
   // u as 16-bit fixed point: 1/65535 of a curve is far below any tolerance the fit sees.
-  for (float u : c.u) w.u16(uint16_t(std::lround(std::clamp(u, 0.f, 1.f) * 65535.f)));
+  for (float u : c.u) w.u16(u_to_fixed(u));
   return std::move(w.data());
 }
 
@@ -144,22 +167,6 @@ bool parse_meta(ByteReader& r, Model* m) {
   return r.ok;
 }
 
-bool parse_faces(ByteReader& r, Model* m) {
-  uint32_t tris = r.u32();
-  // Each index takes at least one byte, so the count is bounded by the section size.
-  if (!r.ok || uint64_t(tris) * 3 > r.remaining()) return false;
-  m->faces.resize(size_t(tris) * 3);
-  int64_t prev = 0;
-  for (auto& idx : m->faces) {
-    uint64_t z = r.varint();
-    int64_t d = int64_t(z >> 1) ^ -int64_t(z & 1);
-    prev += d;
-    if (prev < 0 || prev > UINT32_MAX) return false;
-    idx = uint32_t(prev);
-  }
-  return r.ok;
-}
-
 bool parse_curves(ByteReader& r, Model* m) {
   Curves& c = m->curves;
   uint32_t count = r.u32();
@@ -184,7 +191,7 @@ bool parse_curves(ByteReader& r, Model* m) {
     v = uint32_t(prev);
   }
   c.u.resize(size_t(total));
-  for (auto& u : c.u) u = float(r.u16()) / 65535.f;
+  for (auto& u : c.u) u = u_from_fixed(r.u16());
   return r.ok;
 }
 
@@ -209,7 +216,7 @@ bool parse_segments(ByteReader& r, Model* m) {
       cm.basis_case = r.u8();
       cm.time_param = r.f32();
       cm.space_param = r.f32();
-      cm.coeffs.resize(cm.basis == Basis::Pde8 ? 8 : 32);
+      cm.coeffs.resize(size_t(basis_term_count(cm.basis)));
       for (float& c : cm.coeffs) c = r.f32();
       if (!r.ok) return false;
     }
@@ -232,22 +239,25 @@ bool parse_residual(ByteReader& r, Model* m) {
 std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options) {
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;
   sections.emplace_back(kMeta, meta_bytes(model));
-  if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model));
+  if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model, options));
   sections.emplace_back(kCurves, curve_bytes(model));
   sections.emplace_back(kSegments, segment_bytes(model));
-  sections.emplace_back(kResidual, residual_bytes(model));
+  if (model.residual.step > 0) sections.emplace_back(kResidual, residual_bytes(model));
 
   ByteWriter out;
   out.bytes(kMagic, 4);
-  out.u16(kVersionMajor);
-  out.u16(kVersionMinor);
+  out.u16(kFormatVersionMajor);
+  out.u16(kFormatVersionMinor);
+  out.u32(0);  // file flags
   out.u32(uint32_t(sections.size()));
-  out.u32(crc32c(out.data().data(), 12));
+  out.u32(crc32c(out.data().data(), kHeaderBytes - 4));
   for (const auto& [tag, raw] : sections) {
     put_section(out, tag, tag != kFaces, raw, options.zstd_level);
   }
   return std::move(out.data());
 }
+
+float quantize_curve_u(float u) { return u_from_fixed(u_to_fixed(u)); }
 
 bool read_container(const uint8_t* data, size_t size, Model* model, std::string* error,
                     std::vector<SectionInfo>* infos) {
@@ -257,21 +267,24 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
   const uint8_t* magic = r.take(4);
   if (!magic || std::memcmp(magic, kMagic, 4) != 0) return fail(error, "not a .dcrv file (bad magic)");
   uint16_t major = r.u16();
-  r.u16();  // minor: newer minors only add optional sections
+  r.u16();  // minor: newer minors only add optional sections and hint flags
+  uint32_t file_flags = r.u32();
   uint32_t count = r.u32();
   uint32_t crc = r.u32();
-  if (!r.ok) return fail(error, "truncated header");
-  if (crc != crc32c(data, 12)) return fail(error, "header checksum mismatch");
-  if (major != kVersionMajor) return fail(error, "unsupported format version " + std::to_string(major));
+  if (!r.ok) return fail(error, "truncated header (" + std::to_string(size) + " bytes)");
+  if (crc != crc32c(data, kHeaderBytes - 4) && kVerifyChecksums) return fail(error, "header checksum mismatch");
+  if (major != kFormatVersionMajor) return fail(error, "unsupported format version " + std::to_string(major));
+  if (file_flags & kFileRequiredFlagsMask) return fail(error, "file requires features this decoder does not know");
   if (uint64_t(count) * kSectionHeaderBytes > r.remaining()) return fail(error, "section count exceeds file size");
 
   bool seen[5] = {false, false, false, false, false};
   const uint32_t order[5] = {kMeta, kFaces, kCurves, kSegments, kResidual};
   std::vector<uint8_t> raw;
   for (uint32_t i = 0; i < count; ++i) {
+    const size_t header_at = r.position();
     uint32_t tag = r.u32();
     uint16_t flags = r.u16();
-    r.u16();
+    r.u16();  // reserved
     uint64_t stored = r.u64();
     uint64_t raw_size = r.u64();
     uint32_t section_crc = r.u32();
@@ -279,7 +292,10 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     if (!r.ok) return fail(error, "truncated section header");
     if (stored > r.remaining()) return fail(error, "section " + name + " is truncated");
     const uint8_t* p = r.take(size_t(stored));
-    if (crc32c(p, size_t(stored)) != section_crc) return fail(error, "section " + name + " checksum mismatch");
+    uint32_t crc_head = crc32c(data + header_at, kSectionHeaderBytes - 4);
+    if (crc32c(p, size_t(stored), crc_head) != section_crc && kVerifyChecksums)
+      return fail(error, "section " + name + " checksum mismatch");
+    if (flags & ~kSectionKnownFlags) return fail(error, "section " + name + " has unknown flags");
     if (infos) infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), stored, raw_size});
 
     int known = -1;
@@ -306,14 +322,19 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     ByteReader s(raw.data(), raw.size());
     bool ok = false;
     if (tag == kMeta) ok = parse_meta(s, model);
-    else if (tag == kFaces) ok = parse_faces(s, model);
+    else if (tag == kFaces) {
+      std::string why;
+      if (!decode_faces(raw.data(), raw.size(), &model->faces, &why)) return fail(error, "section FACE: " + why);
+      s.take(raw.size());
+      ok = true;
+    }
     else if (tag == kCurves) ok = parse_curves(s, model);
     else if (tag == kSegments) ok = parse_segments(s, model);
     else if (tag == kResidual) ok = parse_residual(s, model);
     if (!ok || s.remaining() != 0) return fail(error, "section " + name + " is malformed");
   }
   if (r.remaining() != 0) return fail(error, "trailing bytes after the last section");
-  for (int k : {0, 2, 3, 4})
+  for (int k : {0, 2, 3})
     if (!seen[k]) return fail(error, "missing required section " + tag_name(order[k]));
   return validate_model(*model, error);
 }

@@ -9,8 +9,17 @@
 
 namespace dcurve {
 
+// Version written by write_container. Readers accept any minor of their major: a newer minor
+// only adds optional sections and hint flags.
+constexpr uint16_t kFormatVersionMajor = 1;
+constexpr uint16_t kFormatVersionMinor = 0;
+
 struct WriteOptions {
   bool connectivity = true;  // store faces; engines that already hold the mesh can drop them
+  // Vertex ids are never renumbered. Smallest may reorder triangles and rotate their corners
+  // (windings kept) when that codes smaller; Exact keeps the list as given (codec/faces.h).
+  enum class FaceLayout { Smallest, Exact, Traversal };
+  FaceLayout face_layout = FaceLayout::Smallest;
   int zstd_level = 19;       // 1..22
 };
 
@@ -23,7 +32,13 @@ struct SectionInfo {
   uint64_t raw_bytes = 0;     // bytes after decompression
 };
 
+// Serializes `model` (which must pass validate_model). The RESI section is written only when
+// model.residual.step > 0; FACE only when options.connectivity and faces are present.
 std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options = {});
+
+// The value a reader gets back for curve parameter u (stored as 16-bit fixed point): an
+// encoder fits against these so its closed loop sees what the decoder sees. u in [0, 1].
+float quantize_curve_u(float u);
 
 // Parses and validates a whole file. On failure returns false and a message naming the
 // problem; never reads outside [data, data + size) and bounds every allocation by `size`.

@@ -1,5 +1,7 @@
 #include "codec/validate.h"
 
+#include "codec/basis.h"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -20,9 +22,14 @@ bool validate_model(const Model& m, std::string* error) {
   if (!finite_positive(m.meta.diag)) return fail(error, "rest-pose diagonal is not a positive number");
   if (!finite_positive(m.meta.tolerance)) return fail(error, "tolerance is not a positive number");
   if (!std::isfinite(m.meta.frame_rate) || m.meta.frame_rate < 0) return fail(error, "frame rate is invalid");
-  uint64_t values = uint64_t(V) * F * 3;
-  uint64_t budget = std::max<uint64_t>(kMaxValuesFloor, kMaxValuesPerPayloadByte * m.residual.payload.size());
-  if (values > budget) return fail(error, "vertex and frame counts are implausible for the residual size");
+  const bool has_residual = m.residual.step != 0.0 || !m.residual.payload.empty();
+  if (has_residual) {
+    uint64_t values = uint64_t(V) * F * 3;
+    uint64_t budget = std::max<uint64_t>(kMaxValuesFloor, kMaxValuesPerPayloadByte * m.residual.payload.size());
+    if (values > budget) return fail(error, "vertex and frame counts are implausible for the residual size");
+  } else if (m.segments.empty()) {
+    return fail(error, "file has neither a residual layer nor time segments: nothing to evaluate");
+  }
 
   if (m.faces.size() % 3 != 0) return fail(error, "face list is not made of triangles");
   for (uint32_t idx : m.faces)
@@ -50,15 +57,16 @@ bool validate_model(const Model& m, std::string* error) {
     if (s.first_frame != expect_first || s.last_frame < s.first_frame || s.last_frame >= F)
       return fail(error, "time segments do not tile the frame range");
     expect_first = s.last_frame;
+    if (s.mode == FitMode::Displacement && !has_residual)
+      return fail(error, "displacement segment needs the residual layer for its rest pose");
     if (s.motion.size() != size_t(c.curve_count()) * 3) return fail(error, "segment motion count mismatch");
     for (const CurveMotion& cm : s.motion) {
       if (cm.basis == Basis::Zero) continue;
-      size_t terms = cm.basis == Basis::Pde8 ? 8 : 32;
-      if (cm.coeffs.size() != terms) return fail(error, "coefficient count mismatch");
+      if (cm.coeffs.size() != size_t(basis_term_count(cm.basis))) return fail(error, "coefficient count mismatch");
       if ((cm.basis == Basis::Pde8 && cm.basis_case > 3) || (cm.basis == Basis::Pde32 && cm.basis_case != 0))
         return fail(error, "basis case out of range");
-      if (!(std::isfinite(cm.time_param) && cm.time_param >= 0 && cm.time_param <= 1e3f &&
-            std::isfinite(cm.space_param) && cm.space_param >= 0 && cm.space_param <= 1e3f))
+      if (!(std::isfinite(cm.time_param) && cm.time_param >= 0 && cm.time_param <= kBasisMaxParam &&
+            std::isfinite(cm.space_param) && cm.space_param >= 0 && cm.space_param <= kBasisMaxParam))
         return fail(error, "basis parameter out of range");
       for (float v : cm.coeffs)
         if (!std::isfinite(v)) return fail(error, "coefficient is not finite");
@@ -67,9 +75,11 @@ bool validate_model(const Model& m, std::string* error) {
   if (!m.segments.empty() && m.segments.back().last_frame != (F > 1 ? F - 1 : 0))
     return fail(error, "time segments do not reach the last frame");
 
-  if (!finite_positive(m.residual.step)) return fail(error, "residual grid step is not a positive number");
-  for (double o : m.residual.origin)
-    if (!std::isfinite(o)) return fail(error, "residual grid origin is not finite");
+  if (has_residual) {
+    if (!finite_positive(m.residual.step)) return fail(error, "residual grid step is not a positive number");
+    for (double o : m.residual.origin)
+      if (!std::isfinite(o)) return fail(error, "residual grid origin is not finite");
+  }
   return true;
 }
 

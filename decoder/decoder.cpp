@@ -7,13 +7,19 @@
 #include "codec/container.h"
 #include "codec/residual.h"
 #include "dcurve.hpp"
+#include "frame_evaluator.h"
 
 namespace dcurve {
 
+// Tables the decoder may build, in floats per byte of file (with a floor for tiny files):
+// the bound that keeps a hostile file from asking for unbounded memory (format_spec/dcrv.md,
+// "Resource limits").
+constexpr uint64_t kMaxTableFloatsPerFileByte = 8192;
+constexpr uint64_t kMaxTableFloatsFloor = uint64_t(1) << 23;
+
 struct Decoder::Impl {
   Model model;
-  // Reconstructed input frames, frame-major, xyz per vertex: the exact grid positions.
-  std::vector<float> frames;
+  FrameEvaluator evaluator;  // points into `model`: both live and die together
 };
 
 Decoder::Decoder(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -26,17 +32,17 @@ std::unique_ptr<Decoder> Decoder::open_memory(const void* data, size_t size, std
     return nullptr;
   }
   if (!read_container(static_cast<const uint8_t*>(data), size, &impl->model, error)) return nullptr;
-  for (const Segment& s : impl->model.segments)
-    for (const CurveMotion& m : s.motion)
-      if (m.basis != Basis::Zero) {
-        if (error) *error = "file uses a PDE motion model, which this decoder build does not evaluate yet";
-        return nullptr;
-      }
   std::vector<int32_t> q;
-  if (!decode_residuals(impl->model, &q, error)) return nullptr;
-  const ResidualLayer& r = impl->model.residual;
-  impl->frames.resize(q.size());
-  for (size_t i = 0; i < q.size(); ++i) impl->frames[i] = float(r.origin[i % 3] + r.step * double(q[i]));
+  const Model& m = impl->model;
+  // zstd can expand a section 4096-fold, so the residual's own bound is checked against the
+  // file size too, before the grid is allocated.
+  const uint64_t budget = std::max(kMaxTableFloatsFloor, kMaxTableFloatsPerFileByte * uint64_t(size));
+  if (uint64_t(m.meta.vertex_count) * m.meta.frame_count * 3 > budget) {
+    if (error) *error = "vertex and frame counts are implausible for the file size";
+    return nullptr;
+  }
+  if (m.residual.step > 0 && !decode_residuals(m, &q, error)) return nullptr;
+  if (!impl->evaluator.build(m, q, budget, error)) return nullptr;
   return std::unique_ptr<Decoder>(new Decoder(std::move(impl)));
 }
 
@@ -62,22 +68,12 @@ double Decoder::tolerance() const { return impl_->model.meta.tolerance; }
 double Decoder::rest_diagonal() const { return impl_->model.meta.diag; }
 
 void Decoder::evaluate_frame(uint32_t f, float* xyz) const {
-  const size_t n = size_t(vertex_count()) * 3;
-  f = std::min(f, frame_count() - 1);
-  std::copy_n(impl_->frames.data() + f * n, n, xyz);
+  impl_->evaluator.evaluate(double(std::min(f, frame_count() - 1)), xyz);
 }
 
 void Decoder::evaluate(double t, float* xyz) const {
-  const uint32_t F = frame_count();
-  const size_t n = size_t(vertex_count()) * 3;
-  if (!(t > 0.0) || F == 1) return evaluate_frame(0, xyz);  // also catches NaN
-  if (t >= 1.0) return evaluate_frame(F - 1, xyz);
-  double x = t * double(F - 1);
-  uint32_t i = std::min(uint32_t(x), F - 2);
-  float w = float(x - double(i));
-  const float* a = impl_->frames.data() + i * n;
-  const float* b = a + n;
-  for (size_t k = 0; k < n; ++k) xyz[k] = a[k] + w * (b[k] - a[k]);
+  // Clamping happens in frame coordinates; NaN maps to frame 0.
+  impl_->evaluator.evaluate(t * double(frame_count() - 1), xyz);
 }
 
 bool Decoder::compute_normals(const float* xyz, float* normals) const {

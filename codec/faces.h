@@ -1,0 +1,26 @@
+// The FACE section payload (format_spec/dcrv.md, section FACE, describes every byte). Vertex
+// ids are never renumbered. Two layouts: Exact reproduces the triangle list as given; Traversal
+// may reorder triangles and rotate their corners (winding kept), which lets each triangle be
+// coded from the edge it shares with an earlier one. zstd (applied by the container) does the
+// entropy coding.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dcurve {
+
+enum class FaceOrder : uint8_t {
+  Exact = 0,      // same triangles, same order, same first corner
+  Traversal = 1,  // same triangles and windings, in a breadth-first order over shared edges
+};
+
+// Codes `faces` (3 vertex ids per triangle, any values < 2^32 - 1) into bytes.
+std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder order = FaceOrder::Exact);
+
+// Reverses encode_faces. Returns false with a message when the bytes are malformed; never
+// reads outside [data, data + size) and allocates at most 12 bytes per input byte.
+bool decode_faces(const uint8_t* data, size_t size, std::vector<uint32_t>* faces, std::string* error);
+
+}  // namespace dcurve

@@ -1,0 +1,192 @@
+#include "frame_evaluator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "codec/basis.h"
+
+namespace dcurve {
+namespace {
+bool fail(std::string* error, const std::string& msg) {
+  if (error) *error = msg;
+  return false;
+}
+constexpr int kMaxTimeTerms = 4;
+constexpr int kMaxSpaceTerms = 8;
+}  // namespace
+
+bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64_t max_floats, std::string* error) {
+  vertex_count_ = m.meta.vertex_count;
+  frame_count_ = m.meta.frame_count;
+  curves_ = &m.curves;
+  const size_t n = size_t(vertex_count_) * 3;
+  const bool has_residual = !q.empty();
+
+  // A file without segments is one span with no model: plain interpolation of the frames.
+  std::vector<Segment> implicit;
+  const std::vector<Segment>* segments = &m.segments;
+  if (m.segments.empty()) {
+    implicit.resize(1);
+    implicit[0].last_frame = frame_count_ - 1;
+    segments = &implicit;
+  }
+
+  // Count first, allocate after: the tables never exceed the caller's bound.
+  uint64_t correction_floats = 0, weight_floats = 0;
+  for (const Segment& s : *segments) {
+    if (has_residual) correction_floats += uint64_t(s.last_frame - s.first_frame + 1) * n;
+    for (size_t k = 0; k < s.motion.size(); ++k) {
+      const CurveMotion& cm = s.motion[k];
+      if (cm.basis == Basis::Zero) continue;
+      uint32_t c = uint32_t(k / 3);
+      weight_floats += uint64_t(m.curves.offsets[c + 1] - m.curves.offsets[c]) * basis_time_count(cm.basis);
+    }
+    if (correction_floats + weight_floats > max_floats)
+      return fail(error, "decoded tables would need " + std::to_string(correction_floats + weight_floats) +
+                             "+ floats, implausible for the file size");
+  }
+
+  spans_.clear();
+  motions_.clear();
+  corrections_.assign(size_t(correction_floats), 0.f);
+  weights_.assign(size_t(weight_floats), 0.f);
+  size_t weights_at = 0;
+  size_t corrections_at = 0;
+  for (const Segment& s : *segments) {
+    Span span;
+    span.first = s.first_frame;
+    span.last = s.last_frame;
+    span.motions_begin = motions_.size();
+    for (uint32_t c = 0; c < s.motion.size() / 3; ++c) {
+      CurveModel cmod;
+      cmod.curve = c;
+      for (uint8_t a = 0; a < 3; ++a) {
+        const CurveMotion& cm = s.motion[size_t(c) * 3 + a];
+        if (cm.basis == Basis::Zero) continue;
+        const int tc = basis_time_count(cm.basis), sc = basis_space_count(cm.basis);
+        if (tc > kMaxTimeTerms || sc > kMaxSpaceTerms || cm.coeffs.size() != size_t(tc) * sc)
+          return fail(error, "motion basis term counts do not match the coefficients");
+        const uint8_t k = cmod.axes++;
+        cmod.axis[k] = a;
+        cmod.basis[k] = cm.basis;
+        cmod.basis_case[k] = cm.basis_case;
+        cmod.time_param[k] = cm.time_param;
+        cmod.time_count[k] = uint8_t(tc);
+        cmod.stride = uint8_t(cmod.stride + tc);
+      }
+      if (cmod.axes == 0) continue;
+      cmod.weights_at = weights_at;
+      const uint32_t begin = m.curves.offsets[c], end = m.curves.offsets[c + 1];
+      for (uint32_t j = begin; j < end; ++j)
+        for (uint8_t k = 0; k < cmod.axes; ++k) {
+          const CurveMotion& cm = s.motion[size_t(c) * 3 + cmod.axis[k]];
+          const int tc = cmod.time_count[k], sc = basis_space_count(cm.basis);
+          double space[kMaxSpaceTerms];
+          basis_space(cm.basis, cm.basis_case, cm.space_param, m.curves.u[j], space);
+          for (int it = 0; it < tc; ++it) {
+            double acc = 0;
+            for (int is = 0; is < sc; ++is) acc += double(cm.coeffs[size_t(it) * sc + is]) * space[is];
+            weights_[weights_at++] = float(acc);
+          }
+        }
+      motions_.push_back(cmod);
+    }
+    span.motions_end = motions_.size();
+    if (has_residual) {
+      span.corrections_at = corrections_at;
+      const uint32_t len = span.last - span.first;
+      for (uint32_t f = span.first; f <= span.last; ++f) {
+        float* d = corrections_.data() + corrections_at;
+        const int32_t* qf = q.data() + size_t(f) * n;
+        for (size_t i = 0; i < n; ++i) d[i] = float(m.residual.origin[i % 3] + m.residual.step * double(qf[i]));
+        apply_model(span, len ? double(f - span.first) / len : 0.0, -1.f, d);
+        corrections_at += n;
+      }
+    }
+    spans_.push_back(span);
+  }
+  for (float w : weights_)
+    if (!std::isfinite(w)) return fail(error, "motion model overflows at some vertex");
+  for (float d : corrections_)
+    if (!std::isfinite(d)) return fail(error, "motion model overflows at some frame");
+  return true;
+}
+
+namespace {
+// The per-vertex kernel for the common case, every axis of the curve on a basis with TC time
+// functions: fixed trip counts let the compiler unroll it to 3 * TC multiply-adds.
+template <int TC>
+void add_curve3(const float (*time)[kMaxTimeTerms], const float* w, const uint32_t* ids, uint32_t n, float sign,
+                float* out) {
+  for (uint32_t j = 0; j < n; ++j, w += 3 * TC) {
+    float* o = out + size_t(ids[j]) * 3;
+    for (int a = 0; a < 3; ++a) {
+      float sum = 0.f;
+      for (int i = 0; i < TC; ++i) sum += time[a][i] * w[a * TC + i];
+      o[a] += sign * sum;
+    }
+  }
+}
+}  // namespace
+
+void FrameEvaluator::apply_model(const Span& span, double tau, float sign, float* out) const {
+  for (size_t k = span.motions_begin; k < span.motions_end; ++k) {
+    const CurveModel& cm = motions_[k];
+    float time[3][kMaxTimeTerms];
+    for (int a = 0; a < cm.axes; ++a) {
+      double t[kMaxTimeTerms] = {0, 0, 0, 0};
+      basis_time(cm.basis[a], cm.basis_case[a], cm.time_param[a], tau, t);
+      for (int i = 0; i < kMaxTimeTerms; ++i) time[a][i] = float(t[i]);
+    }
+    const uint32_t begin = curves_->offsets[cm.curve], end = curves_->offsets[cm.curve + 1];
+    const uint32_t* ids = curves_->vertices.data() + begin;
+    const float* w = weights_.data() + cm.weights_at;
+    if (cm.axes == 3 && cm.stride == 6) {
+      add_curve3<2>(time, w, ids, end - begin, sign, out);
+    } else if (cm.axes == 3 && cm.stride == 12) {
+      add_curve3<4>(time, w, ids, end - begin, sign, out);
+    } else {
+      // Mixed bases or Zero axes: the same sums with run-time trip counts.
+      for (uint32_t j = 0; j < end - begin; ++j) {
+        float* o = out + size_t(ids[j]) * 3;
+        for (int a = 0; a < cm.axes; ++a) {
+          float sum = 0.f;
+          for (int i = 0; i < cm.time_count[a]; ++i) sum += time[a][i] * *w++;
+          o[cm.axis[a]] += sign * sum;
+        }
+      }
+    }
+  }
+}
+
+void FrameEvaluator::evaluate(double x, float* out) const {
+  const size_t n = size_t(vertex_count_) * 3;
+  const double last_x = double(frame_count_ - 1);
+  if (!(x > 0.0)) x = 0.0;  // also catches NaN
+  if (x > last_x) x = last_x;
+  // The span with the largest first frame <= x: on a shared boundary frame the later wins.
+  auto it = std::upper_bound(spans_.begin(), spans_.end(), x,
+                             [](double v, const Span& s) { return v < double(s.first); });
+  const Span& span = *(it - 1);
+  const uint32_t len = span.last - span.first;
+  uint32_t i = span.first;
+  float w = 0.f;
+  if (len > 0) {
+    i = std::min(uint32_t(x), span.last - 1);
+    w = float(x - double(i));
+  }
+  if (corrections_.empty()) {
+    std::fill_n(out, n, 0.f);
+  } else {
+    const float* a = corrections_.data() + span.corrections_at + size_t(i - span.first) * n;
+    if (w == 0.f) {
+      std::copy_n(a, n, out);
+    } else {
+      const float* b = a + n;
+      for (size_t k = 0; k < n; ++k) out[k] = a[k] + w * (b[k] - a[k]);
+    }
+  }
+  if (span.motions_end > span.motions_begin) apply_model(span, len ? (x - span.first) / len : 0.0, 1.f, out);
+}
+
+}  // namespace dcurve

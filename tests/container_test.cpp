@@ -1,0 +1,285 @@
+// The .dcrv container: exact round trips, the FACE coder, room to grow, and rejection of
+// every malformed file (truncations, byte flips, random bytes, absurd counts).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <random>
+
+#include "codec/container.h"
+#include "codec/faces.h"
+#include "container_bytes.h"
+#include "encoder/io/frames.h"
+#include "test_models.h"
+
+namespace dcurve {
+namespace {
+
+using testing::assemble;
+using testing::plain_section;
+using testing::RawFile;
+using testing::small_model;
+using testing::split_file;
+
+std::vector<uint32_t> roundtrip_faces(const std::vector<uint32_t>& faces, FaceOrder order = FaceOrder::Exact) {
+  std::vector<uint8_t> bytes = encode_faces(faces, order);
+  std::vector<uint32_t> back;
+  std::string err;
+  EXPECT_TRUE(decode_faces(bytes.data(), bytes.size(), &back, &err)) << err;
+  return back;
+}
+
+// Each triangle as its rotation that starts with the smallest id, sorted: what a traversal
+// layout must preserve (the triangles and their windings, not their order).
+std::vector<std::array<uint32_t, 3>> canonical_triangles(const std::vector<uint32_t>& faces) {
+  std::vector<std::array<uint32_t, 3>> tris;
+  for (size_t t = 0; t + 2 < faces.size(); t += 3) {
+    int r = 0;
+    for (int k = 1; k < 3; ++k)
+      if (faces[t + k] < faces[t + r]) r = k;
+    tris.push_back({faces[t + r], faces[t + (r + 1) % 3], faces[t + (r + 2) % 3]});
+  }
+  std::sort(tris.begin(), tris.end());
+  return tris;
+}
+
+TEST(FacesCodec, RoundTripsCorpusMeshesExactly) {
+  const std::filesystem::path corpus = DCURVE_CORPUS_EXT;
+  if (!std::filesystem::exists(corpus)) GTEST_SKIP() << "corpus-ext not found at " << corpus;
+  for (const char* seq : {"horse-gallop", "chicken-crossing", "elastic-cow", "cloth-sphere", "crane"}) {
+    std::vector<float> xyz;
+    std::vector<uint32_t> faces;
+    std::string err;
+    ASSERT_TRUE(read_mesh((corpus / seq / "frame_00000.obj").string(), &xyz, &faces, &err)) << err;
+    EXPECT_EQ(roundtrip_faces(faces), faces) << seq;
+    std::vector<uint32_t> traversal = roundtrip_faces(faces, FaceOrder::Traversal);
+    EXPECT_EQ(canonical_triangles(traversal), canonical_triangles(faces)) << seq;
+  }
+}
+
+TEST(FacesCodec, RoundTripsSoupsAndEdgeCases) {
+  EXPECT_TRUE(roundtrip_faces({}).empty());
+  const uint32_t big = UINT32_MAX - 1;
+  std::vector<uint32_t> edge = {big, 0, big - 1, 5, 5, 5, 0, big, 7, 7, 1, 2, 0, 1, 2, 0, 1, 2};
+  EXPECT_EQ(roundtrip_faces(edge), edge);
+  std::mt19937 rng(7);
+  for (int n : {1, 2, 17, 1000}) {
+    std::vector<uint32_t> soup(size_t(n) * 3);
+    for (auto& v : soup) v = rng() % (n < 100 ? 10 : 100000);
+    EXPECT_EQ(roundtrip_faces(soup), soup);
+    EXPECT_EQ(canonical_triangles(roundtrip_faces(soup, FaceOrder::Traversal)), canonical_triangles(soup));
+  }
+  EXPECT_EQ(canonical_triangles(roundtrip_faces(edge, FaceOrder::Traversal)), canonical_triangles(edge));
+}
+
+TEST(FacesCodec, RejectsEveryTruncationAndBadOps) {
+  const Model m = small_model(3);
+  std::vector<uint32_t> out;
+  std::string err;
+  for (FaceOrder order : {FaceOrder::Exact, FaceOrder::Traversal}) {
+    std::vector<uint8_t> bytes = encode_faces(m.faces, order);
+    for (size_t n = 0; n < bytes.size(); ++n) EXPECT_FALSE(decode_faces(bytes.data(), n, &out, &err)) << n;
+  }
+  // An op that names an edge the history does not hold yet (first triangle).
+  std::vector<uint8_t> bad = {0, 1, 0x80 | (3 << 3)};
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_NE(err.find("edge"), std::string::npos) << err;
+  bad = {0, 1, 0x40 | 7};  // reserved bits
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  bad = {0, 200, 1};  // more triangles than bytes
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  bad = {1, 1, 1, 2, 0, 2, 2};  // traversal symbol 2
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  bad = {9, 0};  // unknown layout
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_NE(err.find("layout"), std::string::npos) << err;
+}
+
+void expect_same(const Model& a, const Model& b) {
+  EXPECT_EQ(a.meta.vertex_count, b.meta.vertex_count);
+  EXPECT_EQ(a.meta.frame_count, b.meta.frame_count);
+  EXPECT_EQ(a.meta.frame_rate, b.meta.frame_rate);
+  EXPECT_EQ(a.meta.tolerance, b.meta.tolerance);
+  EXPECT_EQ(a.meta.diag, b.meta.diag);
+  EXPECT_EQ(a.meta.units, b.meta.units);
+  EXPECT_EQ(a.curves.vertices, b.curves.vertices);
+  EXPECT_EQ(a.curves.offsets, b.curves.offsets);
+  EXPECT_EQ(a.curves.closed, b.curves.closed);
+  ASSERT_EQ(a.curves.u.size(), b.curves.u.size());
+  for (size_t i = 0; i < a.curves.u.size(); ++i) {
+    EXPECT_NEAR(a.curves.u[i], b.curves.u[i], 0.5 / 65535) << i;
+    EXPECT_EQ(quantize_curve_u(a.curves.u[i]), b.curves.u[i]) << i;
+  }
+  ASSERT_EQ(a.segments.size(), b.segments.size());
+  for (size_t s = 0; s < a.segments.size(); ++s) {
+    EXPECT_EQ(a.segments[s].first_frame, b.segments[s].first_frame);
+    EXPECT_EQ(a.segments[s].last_frame, b.segments[s].last_frame);
+    EXPECT_EQ(a.segments[s].mode, b.segments[s].mode);
+    ASSERT_EQ(a.segments[s].motion.size(), b.segments[s].motion.size());
+  }
+  EXPECT_EQ(a.residual.step, b.residual.step);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(a.residual.origin[k], b.residual.origin[k]);
+  EXPECT_EQ(a.residual.payload, b.residual.payload);
+}
+
+TEST(Container, RoundTripPreservesEveryField) {
+  const Model m = small_model(5, {0, 2, 4});
+  std::vector<uint8_t> bytes = write_container(m);
+  Model back;
+  std::string err;
+  std::vector<SectionInfo> infos;
+  ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &back, &err, &infos)) << err;
+  expect_same(m, back);
+  EXPECT_EQ(back.faces, m.faces);
+  ASSERT_EQ(infos.size(), 5u);
+  EXPECT_EQ(infos[1].tag, "FACE");
+  EXPECT_FALSE(infos[1].required);
+  EXPECT_EQ(write_container(back), bytes);  // deterministic writer
+}
+
+TEST(Container, ConnectivityIsOptional) {
+  const Model m = small_model(3);
+  WriteOptions opt;
+  opt.connectivity = false;
+  std::vector<uint8_t> bytes = write_container(m, opt);
+  Model back;
+  std::string err;
+  ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &back, &err)) << err;
+  EXPECT_TRUE(back.faces.empty());
+  expect_same(m, back);
+  EXPECT_LT(bytes.size(), write_container(m).size());
+}
+
+bool reads(const std::vector<uint8_t>& bytes, std::string* err) {
+  Model m;
+  return read_container(bytes.data(), bytes.size(), &m, err);
+}
+
+TEST(Container, RoomToGrow) {
+  const std::vector<uint8_t> good = write_container(small_model(3));
+  std::string err;
+  RawFile f = split_file(good);
+  ASSERT_TRUE(reads(assemble(f), &err)) << err;  // the test's own writer agrees with ours
+
+  RawFile extra = f;
+  extra.sections.insert(extra.sections.begin() + 2, plain_section("XTRA", false, {1, 2, 3}));
+  EXPECT_TRUE(reads(assemble(extra), &err)) << "unknown optional sections are skipped: " << err;
+
+  extra.sections[2].flags = 1;
+  EXPECT_FALSE(reads(assemble(extra), &err));
+  EXPECT_NE(err.find("unknown required section XTRA"), std::string::npos) << err;
+
+  RawFile flagged = f;
+  flagged.flags = 0x10000;  // a hint bit
+  EXPECT_TRUE(reads(assemble(flagged), &err)) << err;
+  flagged.flags = 0x1;  // a required feature
+  EXPECT_FALSE(reads(assemble(flagged), &err));
+
+  RawFile minor = f;
+  minor.minor = 7;
+  EXPECT_TRUE(reads(assemble(minor), &err)) << err;
+  RawFile major = f;
+  major.major = 2;
+  EXPECT_FALSE(reads(assemble(major), &err));
+  EXPECT_NE(err.find("version"), std::string::npos) << err;
+
+  RawFile section_flag = f;
+  section_flag.sections[0].flags |= 0x8;
+  EXPECT_FALSE(reads(assemble(section_flag), &err));
+
+  RawFile swapped = f;
+  std::swap(swapped.sections[2], swapped.sections[3]);
+  EXPECT_FALSE(reads(assemble(swapped), &err));
+  EXPECT_NE(err.find("order"), std::string::npos) << err;
+
+  RawFile missing = f;
+  missing.sections.erase(missing.sections.begin() + 2);  // CURV
+  EXPECT_FALSE(reads(assemble(missing), &err));
+  EXPECT_NE(err.find("missing required section CURV"), std::string::npos) << err;
+}
+
+TEST(Container, RejectsEveryTruncation) {
+  const std::vector<uint8_t> bytes = write_container(small_model(3, {0, 2}));
+  for (size_t n = 0; n < bytes.size(); ++n) {
+    std::vector<uint8_t> cut(bytes.begin(), bytes.begin() + n);
+    std::string err;
+    EXPECT_FALSE(reads(cut, &err)) << n;
+    EXPECT_FALSE(err.empty()) << n;
+  }
+}
+
+TEST(Container, DetectsEverySingleByteFlip) {
+  const std::vector<uint8_t> bytes = write_container(small_model(3, {0, 2}));
+  for (size_t i = 0; i < bytes.size(); ++i)
+    for (uint8_t mask : {uint8_t(0x01), uint8_t(0x80), uint8_t(0xff)}) {
+      std::vector<uint8_t> bad = bytes;
+      bad[i] ^= mask;
+      std::string err;
+      EXPECT_FALSE(reads(bad, &err)) << "byte " << i << " mask " << int(mask);
+    }
+}
+
+TEST(Container, RejectsRandomFiles) {
+  std::mt19937 rng(11);
+  const std::vector<uint8_t> good = write_container(small_model(3));
+  for (int i = 0; i < 3000; ++i) {
+    std::vector<uint8_t> bytes(rng() % 300);
+    for (auto& b : bytes) b = uint8_t(rng());
+    if (i % 2 && bytes.size() >= 20) {
+      // A valid header in front of random sections reaches the section parser.
+      std::copy(good.begin(), good.begin() + 20, bytes.begin());
+    }
+    std::string err;
+    EXPECT_FALSE(reads(bytes, &err));
+  }
+}
+
+// Files whose checksums are right but whose counts are absurd must fail on the count, not
+// on an allocation (the sanitizer build aborts on a huge allocation).
+TEST(Container, RejectsAbsurdCountsWithValidChecksums) {
+  const RawFile f = split_file(write_container(small_model(3)));
+  auto with_section = [&](size_t index, const std::vector<uint8_t>& raw) {
+    RawFile g = f;
+    g.sections[index] = plain_section(g.sections[index].tag, index != 1, raw);
+    return assemble(g);
+  };
+  std::string err;
+  ByteWriter meta;
+  meta.u32(0xffffffffu);
+  meta.u32(0xffffffffu);
+  meta.f64(30);
+  meta.f64(1e-3);
+  meta.f64(1);
+  meta.str("");
+  EXPECT_FALSE(reads(with_section(0, meta.data()), &err));
+  EXPECT_FALSE(err.empty());
+
+  ByteWriter faces;
+  faces.varint(uint64_t(1) << 40);
+  EXPECT_FALSE(reads(with_section(1, faces.data()), &err));
+
+  ByteWriter curves;
+  curves.u32(0xffffffffu);
+  curves.varint(uint64_t(0xffffffffu) << 1);
+  EXPECT_FALSE(reads(with_section(2, curves.data()), &err));
+
+  ByteWriter segs;
+  segs.u32(0xffffffffu);
+  EXPECT_FALSE(reads(with_section(3, segs.data()), &err));
+
+  ByteWriter resi;
+  resi.f64(0.25);
+  for (int k = 0; k < 3; ++k) resi.f64(0);
+  resi.varint(uint64_t(1) << 60);
+  EXPECT_FALSE(reads(with_section(4, resi.data()), &err));
+
+  RawFile huge = f;  // a compressed section that claims to expand to 1 TB
+  huge.sections[2].flags |= 2;
+  huge.sections[2].raw_size = uint64_t(1) << 40;
+  EXPECT_FALSE(reads(assemble(huge), &err));
+  EXPECT_NE(err.find("implausible"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace dcurve

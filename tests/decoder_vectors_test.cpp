@@ -1,0 +1,160 @@
+// The test vectors of format_spec/test_vectors: stored files must decode to the stored
+// expected positions, the expected positions must match the spec formulas for the recipe,
+// and the writer must still produce the stored bytes. A layout change cannot pass silently.
+// DCURVE_WRITE_TEST_VECTORS=1 rewrites the files (after an intentional format change).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "codec/container.h"
+#include "decoder/dcurve.hpp"
+#include "test_models.h"
+
+namespace dcurve {
+namespace {
+
+struct Vector {
+  const char* name;
+  Model model;
+  WriteOptions options;
+};
+
+std::vector<Vector> recipes() {
+  using testing::add_pde_motions;
+  using testing::small_model;
+  using Layout = WriteOptions::FaceLayout;
+  std::vector<Vector> v;
+  v.push_back({"frames_only", small_model(4), {}});
+  v.back().options.face_layout = Layout::Exact;
+
+  v.push_back({"zero_segments_no_faces", small_model(5, {0, 2, 4}), {}});
+  v.back().options.connectivity = false;
+
+  Model pde = small_model(9, {0, 3, 8, 8});
+  add_pde_motions(&pde, 5);
+  pde.segments[1].mode = FitMode::Displacement;
+  v.push_back({"pde_segments_traversal_faces", pde, {}});
+  v.back().options.face_layout = Layout::Traversal;
+
+  Model model_only = small_model(5, {0, 4});
+  add_pde_motions(&model_only, 3);
+  model_only.residual = ResidualLayer{};
+  v.push_back({"model_only", model_only, {}});
+  return v;
+}
+
+std::vector<double> sample_times() {
+  std::vector<double> t;
+  for (int k = 0; k <= 16; ++k) t.push_back(k / 16.0);
+  t.push_back(0.123456789);
+  return t;
+}
+
+std::string dir() { return std::string(DCURVE_SOURCE_DIR) + "/format_spec/test_vectors/"; }
+
+std::vector<uint8_t> read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// One line per t: t and V * 3 coordinates, from the spec formulas in double.
+std::string expected_text(const Model& m) {
+  std::ostringstream out;
+  char buf[32];
+  for (double t : sample_times()) {
+    std::snprintf(buf, sizeof buf, "%.9g", t);
+    out << buf;
+    const double x = t * (m.meta.frame_count - 1);
+    for (uint32_t v = 0; v < m.meta.vertex_count; ++v)
+      for (int a = 0; a < 3; ++a) {
+        std::snprintf(buf, sizeof buf, " %.9g", testing::expected_position(m, x, v, a));
+        out << buf;
+      }
+    out << "\n";
+  }
+  return out.str();
+}
+
+struct ExpectedLine {
+  double t = 0;
+  std::vector<double> xyz;
+};
+
+std::vector<ExpectedLine> parse_expected(const std::string& text) {
+  std::vector<ExpectedLine> lines;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    ExpectedLine e;
+    fields >> e.t;
+    for (double x; fields >> x;) e.xyz.push_back(x);
+    lines.push_back(e);
+  }
+  return lines;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(TestVectors, WriteWhenAsked) {
+  if (!std::getenv("DCURVE_WRITE_TEST_VECTORS")) GTEST_SKIP() << "set DCURVE_WRITE_TEST_VECTORS=1 to rewrite";
+  for (const Vector& v : recipes()) {
+    std::vector<uint8_t> bytes = write_container(v.model, v.options);
+    std::ofstream(dir() + v.name + ".dcrv", std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                                                     std::streamsize(bytes.size()));
+    std::ofstream(dir() + v.name + ".expected.txt") << expected_text(v.model);
+  }
+}
+
+TEST(TestVectors, WriterReproducesTheStoredBytes) {
+  for (const Vector& v : recipes()) {
+    std::vector<uint8_t> stored = read_bytes(dir() + v.name + ".dcrv");
+    ASSERT_FALSE(stored.empty()) << "missing test vector " << v.name;
+    EXPECT_EQ(write_container(v.model, v.options), stored) << v.name;
+  }
+}
+
+// Compared as numbers, not text: another libm may round the last printed digit differently.
+TEST(TestVectors, ExpectedFilesMatchTheSpecFormulas) {
+  for (const Vector& v : recipes()) {
+    std::vector<ExpectedLine> stored = parse_expected(read_text(dir() + v.name + ".expected.txt"));
+    std::vector<ExpectedLine> fresh = parse_expected(expected_text(v.model));
+    ASSERT_EQ(stored.size(), fresh.size()) << v.name;
+    for (size_t k = 0; k < stored.size(); ++k) {
+      EXPECT_EQ(stored[k].t, fresh[k].t);
+      ASSERT_EQ(stored[k].xyz.size(), size_t(v.model.meta.vertex_count) * 3) << v.name;
+      ASSERT_EQ(stored[k].xyz.size(), fresh[k].xyz.size()) << v.name;
+      for (size_t i = 0; i < stored[k].xyz.size(); ++i)
+        EXPECT_NEAR(stored[k].xyz[i], fresh[k].xyz[i], 1e-7 * (1 + std::abs(fresh[k].xyz[i]))) << v.name;
+    }
+  }
+}
+
+TEST(TestVectors, DecoderReproducesTheExpectedPositions) {
+  for (const Vector& v : recipes()) {
+    std::string err;
+    auto d = Decoder::open_file(dir() + v.name + ".dcrv", &err);
+    ASSERT_TRUE(d) << err;
+    std::vector<ExpectedLine> lines = parse_expected(read_text(dir() + v.name + ".expected.txt"));
+    EXPECT_EQ(lines.size(), sample_times().size()) << v.name;
+    std::vector<float> xyz(size_t(d->vertex_count()) * 3);
+    for (const ExpectedLine& e : lines) {
+      ASSERT_EQ(e.xyz.size(), xyz.size()) << v.name;
+      d->evaluate(e.t, xyz.data());
+      for (size_t i = 0; i < xyz.size(); ++i)
+        EXPECT_NEAR(xyz[i], e.xyz[i], 1e-5 * (1 + std::abs(e.xyz[i]))) << v.name << " t " << e.t << " value " << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace dcurve
