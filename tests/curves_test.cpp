@@ -100,13 +100,30 @@ TEST(Curves, GridGivesStraightFullRows) {
   const TestMesh m = grid(40, 30);
   CurveOptions opt;
   opt.target_points = 1000;
+  opt.bend_weight = 1.0;  // a hairpin joining two rows costs more than a second curve
   const Curves c = extract_ok(m, opt);
   const CurveReport r = curve_report(c, m.xyz);
   // The ideal is 30 rows of 40 (or 40 columns of 30); a random walk would turn often.
-  EXPECT_LE(r.curves, 45u);
-  EXPECT_LT(r.mean_turning_angle_deg, 5.0);
+  EXPECT_LE(r.curves, 40u);
+  EXPECT_LT(r.mean_turning_angle_deg, 1.0);
   EXPECT_EQ(r.short_curve_vertex_fraction, 0.0);
   expect_u_endpoints(c);
+}
+
+TEST(Curves, BendWeightTradesCurveCountForTurns) {
+  const TestMesh m = grid(20, 15);
+  CurveOptions opt;
+  opt.target_points = 1000;
+  std::vector<CurveReport> reports;
+  for (double w : {1.0, 0.3, 0.0}) {
+    opt.bend_weight = w;
+    reports.push_back(curve_report(extract_ok(m, opt), m.xyz));
+  }
+  // Cheaper bends: rows get joined at the border into longer, more bent curves.
+  EXPECT_GT(reports[0].curves, reports[2].curves);
+  EXPECT_LT(reports[0].mean_turning_angle_deg, reports[2].mean_turning_angle_deg);
+  EXPECT_GE(reports[0].curves, reports[1].curves);
+  EXPECT_GE(reports[1].curves, reports[2].curves);
 }
 
 TEST(Curves, TargetLengthBoundsEveryCurve) {
@@ -204,6 +221,7 @@ TEST(Curves, ChordLengthAndCoordinateRangeRules) {
   for (ParamRule rule : {ParamRule::ChordLength, ParamRule::CoordinateRange}) {
     CurveOptions opt;
     opt.u_rule = rule;
+    opt.bend_weight = 1.0;  // keep the two rows apart rather than joined by a hairpin
     const Curves c = extract_ok(m, opt);
     ASSERT_EQ(c.curve_count(), 2u);
     for (uint32_t k = 0; k < 2; ++k) {
@@ -316,6 +334,10 @@ TEST(Curves, ClearErrors) {
   opt.target_points = 1;
   EXPECT_FALSE(extract_curves(g.xyz, g.vertex_count(), g.faces, opt, &c, &error));
   EXPECT_NE(error.find("target_points"), std::string::npos) << error;
+  opt.target_points = 8;
+  opt.bend_weight = -1.0;
+  EXPECT_FALSE(extract_curves(g.xyz, g.vertex_count(), g.faces, opt, &c, &error));
+  EXPECT_NE(error.find("bend_weight"), std::string::npos) << error;
   EXPECT_TRUE(c.vertices.empty());  // *out untouched on failure
 }
 

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
+
+#include "encoder/curves/cut_to_target.h"
 #include "encoder/curves/direction_fields.h"
 #include "encoder/curves/link_paths.h"
 #include "encoder/curves/surface_graph.h"
@@ -14,46 +15,22 @@ namespace {
 using curves_detail::PathLinks;
 using curves_detail::SurfaceGraph;
 
-// What a set of paths would cost the codec, per component, in units of "one curve": each
-// curve after cutting to the target length, plus its bends (a 90-degree turn counts as one
-// more curve, since the predictor from the previous vertex fails there about as badly as at a
-// curve start).
-std::vector<double> component_costs(const Curves& paths, const SurfaceGraph& g, const std::vector<float>& xyz,
-                                     uint32_t target) {
+// What a set of curves costs, per component, in the units of cut_to_target.h.
+std::vector<double> component_costs(const Curves& curves, const SurfaceGraph& g, const std::vector<float>& xyz,
+                                     double bend_weight) {
   std::vector<double> cost(g.component_count, 0.0);
-  for (uint32_t c = 0; c < paths.curve_count(); ++c) {
-    const uint32_t* v = paths.vertices.data() + paths.offsets[c];
-    const uint32_t n = paths.offsets[c + 1] - paths.offsets[c];
-    double bends = 0.0;
-    for (uint32_t i = 1; i + 1 < n; ++i) bends += 1.0 - std::cos(curves_detail::turn_angle(xyz, v[i - 1], v[i], v[i + 1]));
-    if (paths.closed[c] && n >= 3) {
-      bends += 1.0 - std::cos(curves_detail::turn_angle(xyz, v[n - 2], v[n - 1], v[0]));
-      bends += 1.0 - std::cos(curves_detail::turn_angle(xyz, v[n - 1], v[0], v[1]));
+  for (uint32_t c = 0; c < curves.curve_count(); ++c) {
+    const uint32_t* v = curves.vertices.data() + curves.offsets[c];
+    const uint32_t n = curves.offsets[c + 1] - curves.offsets[c];
+    double total = 1.0 + (n < 4 ? curves_detail::kShortCurvePenalty : 0.0);
+    for (uint32_t i = 1; i + 1 < n; ++i) total += curves_detail::bend_cost(curves_detail::turn_angle(xyz, v[i - 1], v[i], v[i + 1]), bend_weight);
+    if (curves.closed[c] && n >= 3) {
+      total += curves_detail::bend_cost(curves_detail::turn_angle(xyz, v[n - 2], v[n - 1], v[0]), bend_weight);
+      total += curves_detail::bend_cost(curves_detail::turn_angle(xyz, v[n - 1], v[0], v[1]), bend_weight);
     }
-    cost[g.component[v[0]]] += double((n + target - 1) / target) + bends;
+    cost[g.component[v[0]]] += total;
   }
   return cost;
-}
-
-// Cuts every path longer than `target` into ceil(n / target) nearly equal open pieces.
-Curves cut_to_target(const Curves& paths, uint32_t target) {
-  Curves out;
-  out.vertices = paths.vertices;
-  out.offsets.assign(1, 0);
-  for (uint32_t c = 0; c < paths.curve_count(); ++c) {
-    const uint32_t begin = paths.offsets[c], n = paths.offsets[c + 1] - begin;
-    const uint32_t pieces = (n + target - 1) / target;
-    if (pieces <= 1) {
-      out.offsets.push_back(begin + n);
-      out.closed.push_back(paths.closed[c]);
-      continue;
-    }
-    for (uint32_t p = 1; p <= pieces; ++p) {
-      out.offsets.push_back(begin + uint32_t(uint64_t(n) * p / pieces));
-      out.closed.push_back(0);
-    }
-  }
-  return out;
 }
 
 }  // namespace
@@ -61,6 +38,10 @@ Curves cut_to_target(const Curves& paths, uint32_t target) {
 bool extract_curves(const std::vector<float>& rest_xyz, uint32_t vertex_count,
                     const std::vector<uint32_t>& faces, const CurveOptions& options, Curves* out,
                     std::string* error) {
+  if (!(options.bend_weight >= 0.0) || !std::isfinite(options.bend_weight)) {
+    if (error) *error = "curve extraction: bend_weight must be finite and >= 0";
+    return false;
+  }
   if (options.target_points < 2) {
     if (error) *error = "curve extraction: target_points must be >= 2 (got " + std::to_string(options.target_points) + ")";
     return false;
@@ -78,7 +59,8 @@ bool extract_curves(const std::vector<float>& rest_xyz, uint32_t vertex_count,
   for (uint32_t f = 0; f < fields.size(); ++f) {
     links.push_back(curves_detail::link_along_field(graph, rest_xyz, fields[f].dir, params));
     curves_detail::assemble_paths(links.back(), &paths);
-    const std::vector<double> cost = component_costs(paths, graph, rest_xyz, options.target_points);
+    const Curves cut = curves_detail::cut_to_target(paths, rest_xyz, options.target_points, options.bend_weight);
+    const std::vector<double> cost = component_costs(cut, graph, rest_xyz, options.bend_weight);
     for (uint32_t c = 0; c < graph.component_count; ++c)
       if (cost[c] < best_cost[c]) {  // strict: the earlier field wins ties
         best_cost[c] = cost[c];
@@ -94,7 +76,7 @@ bool extract_curves(const std::vector<float>& rest_xyz, uint32_t vertex_count,
     chosen.nbr[2 * v + 1] = from.nbr[2 * v + 1];
   }
   curves_detail::assemble_paths(chosen, &paths);
-  Curves result = cut_to_target(paths, options.target_points);
+  Curves result = curves_detail::cut_to_target(paths, rest_xyz, options.target_points, options.bend_weight);
   result.u.assign(result.vertices.size(), 0.f);
   for (uint32_t c = 0; c < result.curve_count(); ++c) parameterize_curve(&result, c, rest_xyz, options.u_rule);
   *out = std::move(result);

@@ -54,12 +54,12 @@ class Linker {
   uint32_t first_neighbour(uint32_t v) const { return nbr_[2 * v]; }
 
   // Links a-b if both have a free slot, the turns at a and b have cosine >= min_cos, and the
-  // link closes no cycle shorter than 3 vertices. `max_short` > 0 demands that one of the two
-  // runs has fewer than max_short vertices.
-  bool try_link(uint32_t a, uint32_t b, double min_cos, uint32_t max_short) {
+  // link closes no cycle (none at all unless may_close, never one below 3 vertices).
+  // `max_short` > 0 demands that one of the two runs has fewer than max_short vertices.
+  bool try_link(uint32_t a, uint32_t b, double min_cos, uint32_t max_short, bool may_close) {
     if (degree(a) == 2 || degree(b) == 2) return false;
     const bool same_run = sets_.find(a) == sets_.find(b);
-    if (same_run && sets_.size(a) < 3) return false;
+    if (same_run && (!may_close || sets_.size(a) < 3)) return false;
     if (max_short > 0 && std::min(sets_.size(a), sets_.size(b)) >= max_short) return false;
     // The existing neighbour of an end vertex is always in slot 0.
     if (degree(a) == 1 && turn_cosine(xyz_, nbr_[2 * a], a, b) < min_cos) return false;
@@ -114,15 +114,11 @@ PathLinks link_along_field(const SurfaceGraph& g, const std::vector<float>& xyz,
 
   const double deg = M_PI / 180.0;
   Linker linker(xyz, g.vertex_count);
-  const struct {
-    double turn_deg;
-    uint32_t max_short;
-  } passes[] = {{params.straight_turn_deg, 0}, {params.bent_turn_deg, 0}, {params.short_turn_deg, params.short_points}};
-  for (const auto& pass : passes) {
-    const double min_cos = std::cos(pass.turn_deg * deg);
+  for (const LinkPass& pass : params.passes) {
+    const double min_cos = pass.max_turn_deg >= 180.0 ? -2.0 : std::cos(pass.max_turn_deg * deg);
     for (const auto& item : order) {
       const auto& e = g.edges[item.second];
-      linker.try_link(e[0], e[1], min_cos, pass.max_short);
+      linker.try_link(e[0], e[1], min_cos, pass.short_points, pass.may_close);
     }
   }
 

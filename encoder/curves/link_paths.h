@@ -12,11 +12,22 @@ namespace curves_detail {
 
 constexpr uint32_t kNoVertex = UINT32_MAX;
 
+// One sweep over the edges (best aligned first). Later passes accept sharper turns, so a run
+// first grows as straight as it can and only then is joined to its neighbours around a bend;
+// the cut to the target length (extract.cpp) later prefers to cut at those bends.
+struct LinkPass {
+  double max_turn_deg;     // largest turn a new link may create at either end
+  uint32_t short_points;   // > 0: one of the two runs must have fewer points than this
+  bool may_close;          // whether a link may close a run into a cycle
+};
+
 struct LinkParams {
-  double straight_turn_deg = 45.0;  // pass 1: any two runs may join when the turn is at most this
-  double bent_turn_deg = 70.0;      // pass 2: a join this sharp is still better than two curves
-  double short_turn_deg = 110.0;    // pass 3: allowed when one side is a short run
-  uint32_t short_points = 4;        // "short run": fewer points than this
+  std::vector<LinkPass> passes = {
+      {45.0, 0, true},    // straight runs
+      {70.0, 0, true},    // gentle bends are worth less than a new curve
+      {135.0, 4, false},  // absorb short runs (fewer than 4 points) even around a sharp bend
+      {180.0, 0, false},  // hairpins between parallel runs: cut there first if too long
+  };
 };
 
 // Two neighbours per vertex (kNoVertex when unused); a vertex with two is inside a curve.
@@ -26,7 +37,7 @@ struct PathLinks {
 
 // Greedy: edges best aligned with `dir` (vertex_count * 3) are linked first; a link is taken
 // when both ends have a free slot, the turn it makes stays under the pass's limit, and it does
-// not close a cycle of fewer than 3 vertices. Vertices still alone afterwards are threaded
+// not close a cycle (of at least 3 vertices) unless the pass allows it. Vertices still alone afterwards are threaded
 // into a linked edge of a triangle they belong to. Deterministic (ties broken by edge order).
 PathLinks link_along_field(const SurfaceGraph& graph, const std::vector<float>& xyz,
                            const std::vector<float>& dir, const LinkParams& params);
