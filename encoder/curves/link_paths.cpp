@@ -1,5 +1,7 @@
 #include "encoder/curves/link_paths.h"
 
+#include "encoder/curves/join_runs.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -51,7 +53,6 @@ class Linker {
       : xyz_(xyz), sets_(vertex_count), nbr_(size_t(vertex_count) * 2, kNoVertex) {}
 
   uint32_t degree(uint32_t v) const { return (nbr_[2 * v] != kNoVertex) + (nbr_[2 * v + 1] != kNoVertex); }
-  uint32_t first_neighbour(uint32_t v) const { return nbr_[2 * v]; }
 
   // Links a-b if both have a free slot, the turns at a and b have cosine >= min_cos, and the
   // link closes no cycle (none at all unless may_close, never one below 3 vertices).
@@ -69,17 +70,6 @@ class Linker {
     sets_.unite(a, b);
     return true;
   }
-
-  // Replaces the link a-b by a-s-b for a vertex s with no link yet.
-  void thread(uint32_t s, uint32_t a, uint32_t b) {
-    for (int k = 0; k < 2; ++k) {
-      if (nbr_[2 * a + k] == b) nbr_[2 * a + k] = s;
-      if (nbr_[2 * b + k] == a) nbr_[2 * b + k] = s;
-    }
-    nbr_[2 * s] = a;
-    nbr_[2 * s + 1] = b;
-  }
-  bool linked(uint32_t a, uint32_t b) const { return nbr_[2 * a] == b || nbr_[2 * a + 1] == b; }
 
   std::vector<uint32_t> release() { return std::move(nbr_); }
 
@@ -122,28 +112,10 @@ PathLinks link_along_field(const SurfaceGraph& g, const std::vector<float>& xyz,
     }
   }
 
-  // A vertex left alone joins the curve through one of its triangles: if two of its
-  // neighbours are linked to each other, the detour a-s-b costs little (its two steps are
-  // edges of one triangle). The shortest detour wins; ties go to the smaller ids.
-  for (uint32_t s = 0; s < g.vertex_count; ++s) {
-    if (linker.degree(s) != 0) continue;
-    double best = HUGE_VAL;
-    uint32_t best_a = kNoVertex, best_b = kNoVertex;
-    for (uint32_t i = g.adj_offsets[s]; i < g.adj_offsets[s + 1]; ++i)
-      for (uint32_t j = i + 1; j < g.adj_offsets[s + 1]; ++j) {
-        const uint32_t a = g.adj[i], b = g.adj[j];
-        if (!linker.linked(a, b)) continue;
-        const Vec sa = sub(xyz, a, s), sb = sub(xyz, b, s), ab = sub(xyz, b, a);
-        const double detour = std::sqrt(dot(sa, sa)) + std::sqrt(dot(sb, sb)) - std::sqrt(dot(ab, ab));
-        if (detour < best) {
-          best = detour;
-          best_a = a;
-          best_b = b;
-        }
-      }
-    if (best_a != kNoVertex) linker.thread(s, best_a, best_b);
-  }
-  return PathLinks{linker.release()};
+  PathLinks links{linker.release()};
+  if (params.join_sweeps > 0) join_runs_through_neighbours(g, xyz, params.max_join_bend, params.join_sweeps, &links);
+  thread_lonely_vertices(g, xyz, &links);
+  return links;
 }
 
 void assemble_paths(const PathLinks& links, Curves* out) {

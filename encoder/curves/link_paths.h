@@ -28,6 +28,8 @@ struct LinkParams {
       {135.0, 4, false},  // absorb short runs (fewer than 4 points) even around a sharp bend
       {180.0, 0, false},  // hairpins between parallel runs: cut there first if too long
   };
+  uint32_t join_sweeps = 2;     // passes of join_runs_through_neighbours (0 = none)
+  double max_join_bend = 2.0;   // its limit on added bend, in 1 - cos units
 };
 
 // Two neighbours per vertex (kNoVertex when unused); a vertex with two is inside a curve.
@@ -37,8 +39,8 @@ struct PathLinks {
 
 // Greedy: edges best aligned with `dir` (vertex_count * 3) are linked first; a link is taken
 // when both ends have a free slot, the turn it makes stays under the pass's limit, and it does
-// not close a cycle (of at least 3 vertices) unless the pass allows it. Vertices still alone afterwards are threaded
-// into a linked edge of a triangle they belong to. Deterministic (ties broken by edge order).
+// not close a cycle (of at least 3 vertices) unless the pass allows it. Then runs are joined
+// and lone vertices threaded in (join_runs.h). Deterministic (ties broken by edge order).
 PathLinks link_along_field(const SurfaceGraph& graph, const std::vector<float>& xyz,
                            const std::vector<float>& dir, const LinkParams& params);
 
