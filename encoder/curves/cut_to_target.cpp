@@ -20,7 +20,7 @@ void split_open(const std::vector<uint32_t>& v, const std::vector<float>& xyz, u
   const size_t n = v.size();
   std::vector<double> bend_prefix(n + 1, 0.0);  // bend_prefix[m + 1] = sum of bends at 0..m
   for (size_t m = 0; m < n; ++m)
-    bend_prefix[m + 1] = bend_prefix[m] + (m >= 1 && m + 1 < n ? bend_cost(turn_angle(xyz, v[m - 1], v[m], v[m + 1]), bend_weight) : 0.0);
+    bend_prefix[m + 1] = bend_prefix[m] + (m >= 1 && m + 1 < n ? bend_cost(xyz, v[m - 1], v[m], v[m + 1], bend_weight) : 0.0);
   std::vector<double> best(n + 1, HUGE_VAL);
   std::vector<size_t> from(n + 1, 0);
   best[0] = 0.0;
@@ -50,7 +50,9 @@ void split_open(const std::vector<uint32_t>& v, const std::vector<float>& xyz, u
 
 }  // namespace
 
-double bend_cost(double turn_radians, double bend_weight) { return bend_weight * (1.0 - std::cos(turn_radians)); }
+double bend_cost(const std::vector<float>& xyz, uint32_t a, uint32_t b, uint32_t c, double bend_weight) {
+  return bend_weight * (1.0 - turn_cosine(xyz, a, b, c));
+}
 
 Curves cut_to_target(const Curves& runs, const std::vector<float>& xyz, uint32_t target, double bend_weight) {
   Curves out;
@@ -67,13 +69,13 @@ Curves cut_to_target(const Curves& runs, const std::vector<float>& xyz, uint32_t
       continue;
     }
     if (runs.closed[c]) {
-      // Open the cycle where cutting removes the most bend: rotate that vertex to the front.
+      // Open the cycle where cutting removes the most bend (sum of 1 - cos): rotate that vertex to the front.
       auto at = [&](size_t k) { return v[k % n]; };  // callers add n, so k never wraps below 0
       size_t best = 0;
       double best_gain = -1.0;
       for (size_t i = 0; i < n; ++i) {
-        const double gain = turn_angle(xyz, at(i + n - 2), at(i + n - 1), at(i)) +
-                            turn_angle(xyz, at(i + n - 1), at(i), at(i + 1));
+        const double gain = 2.0 - turn_cosine(xyz, at(i + n - 2), at(i + n - 1), at(i)) -
+                            turn_cosine(xyz, at(i + n - 1), at(i), at(i + 1));
         if (gain > best_gain) {
           best_gain = gain;
           best = i;

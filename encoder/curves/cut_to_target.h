@@ -8,9 +8,9 @@
 namespace dcurve {
 namespace curves_detail {
 
-// What a bend costs in units of one curve: bend_weight * (1 - cos(turn)); see
+// What the bend a -> b -> c costs in units of one curve: bend_weight * (1 - cos(turn)); see
 // CurveOptions::bend_weight.
-double bend_cost(double turn_radians, double bend_weight);
+double bend_cost(const std::vector<float>& xyz, uint32_t a, uint32_t b, uint32_t c, double bend_weight);
 
 // Extra cost of a curve with fewer than 4 points, on top of its 1: short curves carry a whole
 // curve's overhead for few points.

@@ -23,10 +23,10 @@ std::vector<double> component_costs(const Curves& curves, const SurfaceGraph& g,
     const uint32_t* v = curves.vertices.data() + curves.offsets[c];
     const uint32_t n = curves.offsets[c + 1] - curves.offsets[c];
     double total = 1.0 + (n < 4 ? curves_detail::kShortCurvePenalty : 0.0);
-    for (uint32_t i = 1; i + 1 < n; ++i) total += curves_detail::bend_cost(curves_detail::turn_angle(xyz, v[i - 1], v[i], v[i + 1]), bend_weight);
+    for (uint32_t i = 1; i + 1 < n; ++i) total += curves_detail::bend_cost(xyz, v[i - 1], v[i], v[i + 1], bend_weight);
     if (curves.closed[c] && n >= 3) {
-      total += curves_detail::bend_cost(curves_detail::turn_angle(xyz, v[n - 2], v[n - 1], v[0]), bend_weight);
-      total += curves_detail::bend_cost(curves_detail::turn_angle(xyz, v[n - 1], v[0], v[1]), bend_weight);
+      total += curves_detail::bend_cost(xyz, v[n - 2], v[n - 1], v[0], bend_weight);
+      total += curves_detail::bend_cost(xyz, v[n - 1], v[0], v[1], bend_weight);
     }
     cost[g.component[v[0]]] += total;
   }

@@ -71,7 +71,7 @@ class Runs {
 // 1 - cos of the turn a -> b -> c, or 0 when any of them is missing.
 double bend(const std::vector<float>& xyz, uint32_t a, uint32_t b, uint32_t c) {
   if (a == kNoVertex || b == kNoVertex || c == kNoVertex) return 0.0;
-  return 1.0 - std::cos(turn_angle(xyz, a, b, c));
+  return 1.0 - turn_cosine(xyz, a, b, c);
 }
 
 struct Move {

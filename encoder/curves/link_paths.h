@@ -49,6 +49,9 @@ PathLinks link_along_field(const SurfaceGraph& graph, const std::vector<float>& 
 // *out (u left empty).
 void assemble_paths(const PathLinks& links, Curves* out);
 
+// Cosine of the turn at `b` for the step a -> b -> c, in [-1, 1]; 1 when a step has zero length.
+double turn_cosine(const std::vector<float>& xyz, uint32_t a, uint32_t b, uint32_t c);
+
 // Turning angle in radians at `b` for the step a -> b -> c; 0 when straight or degenerate.
 double turn_angle(const std::vector<float>& xyz, uint32_t a, uint32_t b, uint32_t c);
 
