@@ -9,31 +9,42 @@ namespace dcurve {
 namespace curves_detail {
 namespace {
 
-double piece_cost(uint32_t size, double inner_bends) {
-  return 1.0 + (size < 4 ? kShortCurvePenalty : 0.0) + inner_bends;
-}
-
 // Appends the cheapest split of the open sequence v into pieces of at most `target` points.
-// Dynamic programming over cut positions: best[j] is the cheapest split of v[0, j).
+// Dynamic programming over cut positions: best[j] is the cheapest split of v[0, j). A piece
+// [i, j) of 4 or more points costs 1 + P[j-1] - P[i+1] (P: prefix sums of bends; its ends
+// carry none), so the best such i minimizes best[i] - P[i+1] over a sliding window, which a
+// monotone deque finds in O(1) amortized: O(n) whatever the target.
 void split_open(const std::vector<uint32_t>& v, const std::vector<float>& xyz, uint32_t target, double bend_weight,
                 Curves* out) {
   const size_t n = v.size();
-  std::vector<double> bend_prefix(n + 1, 0.0);  // bend_prefix[m + 1] = sum of bends at 0..m
+  std::vector<double> prefix(n + 1, 0.0);  // prefix[m + 1] = sum of bends at 0..m
   for (size_t m = 0; m < n; ++m)
-    bend_prefix[m + 1] = bend_prefix[m] + (m >= 1 && m + 1 < n ? bend_cost(xyz, v[m - 1], v[m], v[m + 1], bend_weight) : 0.0);
+    prefix[m + 1] = prefix[m] + (m >= 1 && m + 1 < n ? bend_cost(xyz, v[m - 1], v[m], v[m + 1], bend_weight) : 0.0);
   std::vector<double> best(n + 1, HUGE_VAL);
   std::vector<size_t> from(n + 1, 0);
+  std::vector<size_t> window(n + 1);  // deque of start candidates, keys increasing
+  size_t head = 0, tail = 0;
+  auto key = [&](size_t i) { return best[i] - prefix[i + 1]; };
   best[0] = 0.0;
   for (size_t j = 1; j <= n; ++j) {
-    const size_t first = j > target ? j - target : 0;
-    for (size_t i = first; i < j; ++i) {
-      // Interior vertices of the piece [i, j) are i + 1 .. j - 2; its ends carry no bend.
-      const double inner = j >= i + 3 ? bend_prefix[j - 1] - bend_prefix[i + 1] : 0.0;
-      const double cost = best[i] + piece_cost(uint32_t(j - i), inner);
-      if (cost < best[j] - 1e-12) {
+    auto consider = [&](size_t i, double cost) {
+      if (cost < best[j]) {
         best[j] = cost;
         from[j] = i;
       }
+    };
+    if (j >= 4 && target >= 4) {
+      const size_t i = j - 4;
+      while (tail > head && key(window[tail - 1]) >= key(i)) --tail;
+      window[tail++] = i;
+    }
+    while (tail > head && window[head] + target < j) ++head;
+    if (tail > head) consider(window[head], key(window[head]) + prefix[j - 1] + 1.0);
+    // Short pieces (1 to 3 points) pay the penalty; a 3-point piece has one inner bend.
+    for (size_t size = 1; size <= std::min<size_t>({3, j, target}); ++size) {
+      const size_t i = j - size;
+      const double inner = size == 3 ? prefix[j - 1] - prefix[i + 1] : 0.0;
+      consider(i, best[i] + 1.0 + kShortCurvePenalty + inner);
     }
   }
   std::vector<size_t> cuts;
