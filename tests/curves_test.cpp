@@ -341,6 +341,30 @@ TEST(Curves, ClearErrors) {
   EXPECT_TRUE(c.vertices.empty());  // *out untouched on failure
 }
 
+TEST(Curves, BowTieAndFlippedNeighbours) {
+  // Two triangles sharing only vertex 0: OpenMesh accepts this non-manifold vertex, and the
+  // curves must still partition the five vertices.
+  TestMesh bow;
+  bow.add(0, 0, 0);
+  bow.add(1, 1, 0);
+  bow.add(1, -1, 0);
+  bow.add(-1, 1, 0);
+  bow.add(-1, -1, 0);
+  bow.tri(0, 2, 1);
+  bow.tri(0, 3, 4);
+  extract_ok(bow);
+
+  // Two triangles on one edge with opposite orientation: refused with a message naming it.
+  // grid(2, 2) is (0, 1, 3) + (0, 3, 2); flipping the second makes both run 3 -> 0.
+  TestMesh flipped = grid(2, 2);
+  ASSERT_EQ(flipped.faces, std::vector<uint32_t>({0, 1, 3, 0, 3, 2}));
+  flipped.faces = {0, 1, 3, 0, 2, 3};
+  Curves c;
+  std::string error;
+  EXPECT_FALSE(extract_curves(flipped.xyz, flipped.vertex_count(), flipped.faces, CurveOptions{}, &c, &error));
+  EXPECT_NE(error.find("face 1"), std::string::npos) << error;
+}
+
 TEST(Curves, CheckPartitionCatchesEachBreak) {
   const TestMesh m = grid(4, 3);
   const Curves good = extract_ok(m);
