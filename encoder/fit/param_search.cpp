@@ -103,7 +103,10 @@ ParamChoice refine(const Eigen::MatrixXd& w, const Eigen::VectorXd& u, const Eig
       Eigen::VectorXd rn = model.residual(xn[0], xn[1]);
       double cn = rn.squaredNorm();
       if (cn < cost) {
-        bool tiny = std::fabs(xn[0] - x[0]) <= 1e-13 * (1 + x[0]) && std::fabs(xn[1] - x[1]) <= 1e-13 * (1 + x[1]);
+        // Stop once the parameters or the residual no longer move: a further gain below one
+        // part in 1e10 of the residual changes no stored float.
+        bool tiny = (std::fabs(xn[0] - x[0]) <= 1e-13 * (1 + x[0]) && std::fabs(xn[1] - x[1]) <= 1e-13 * (1 + x[1])) ||
+                    cost - cn <= 1e-10 * cost;
         x[0] = xn[0];
         x[1] = xn[1];
         r = rn;
