@@ -58,6 +58,31 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
+// Fits the even frames with one PDE variant and measures every frame 0..10.
+bool pde_errors_2024(const std::vector<CurveFrames>& truth, const std::vector<CurveFrames>& fit_input,
+                     const std::vector<double>& tau_all, Basis basis, bool rigid, std::vector<FrameError>* errors,
+                     double* fit_ms, std::string* error) {
+  FitOptions options;
+  options.basis = basis;
+  options.remove_rigid = rigid;
+  std::vector<CurveFit> fits;
+  Clock::time_point start = Clock::now();
+  if (!fit_curves(fit_input, options, 0, &fits, error)) return false;
+  *fit_ms = ms_since(start);
+  errors->assign(tau_all.size(), FrameError());
+  std::vector<double> predicted;
+  for (size_t c = 0; c < truth.size(); ++c) {
+    const CurveFrames& t = truth[c];
+    const size_t P = t.points();
+    predicted.resize(P * 3);
+    for (size_t n = 0; n < tau_all.size(); ++n) {
+      evaluate_curve_fit(fits[c], t.u, {}, tau_all[n], predicted.data());
+      add_2024(t.xyz.data() + n * P * 3, predicted.data(), P, &(*errors)[n]);
+    }
+  }
+  return true;
+}
+
 bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* result, std::string* table,
               std::string* error) {
   const uint32_t kFrames = 11;
@@ -81,24 +106,15 @@ bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* resul
     truth[c] = gather_curve_frames(anim, curves, c, all, tau_all);
     fit_input[c] = gather_curve_frames(anim, curves, c, even, tau_even);
   }
-  FitOptions options;
-  options.basis = Basis::Pde32;
-  options.remove_rigid = true;
-  std::vector<CurveFit> fits;
-  Clock::time_point start = Clock::now();
-  if (!fit_curves(fit_input, options, 0, &fits, error)) return false;
-  const double pde_ms = ms_since(start);
-
   std::vector<FrameError> pde(kFrames), spline(kFrames);
-  std::vector<double> predicted, splined, left, right;
+  double pde_ms = 0;
+  if (!pde_errors_2024(truth, fit_input, tau_all, Basis::Pde32, true, &pde, &pde_ms, error)) return false;
+  std::vector<double> splined, left, right;
   for (uint32_t c = 0; c < C; ++c) {
     const CurveFrames& t = truth[c];
     const size_t P = t.points();
-    predicted.resize(P * 3);
     for (uint32_t n = 0; n < kFrames; ++n) {
       const double* truth_n = t.xyz.data() + size_t(n) * P * 3;
-      evaluate_curve_fit(fits[c], t.u, {}, tau_all[n], predicted.data());
-      add_2024(truth_n, predicted.data(), P, &pde[n]);
       if (n % 2 == 0) {
         fit_bspline(t.u, truth_n, 50, &splined);
       } else {  // linear interpolation between the neighbouring fitted frames
@@ -139,6 +155,20 @@ bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* resul
   j["bspline"] = {{"mean_EA", bs_ea}, {"max_EM", bs_em}, {"mean_EA_predicted", bs_ea_odd},
                   {"max_EM_predicted", bs_em_odd}, {"control_points", 50}};
   j["ratio_bspline_over_pde"] = {{"mean_EA", bs_ea / pde_ea}, {"max_EM", bs_em / pde_em}};
+  // The same protocol with the other PDE choices, to show what rigid removal and the basis size do.
+  nlohmann::json variants = nlohmann::json::array();
+  std::string vt;
+  for (auto [basis, rigid] : {std::pair<Basis, bool>{Basis::Pde32, false}, {Basis::Pde8, true}, {Basis::Pde8, false}}) {
+    std::vector<FrameError> fe;
+    double ms = 0;
+    if (!pde_errors_2024(truth, fit_input, tau_all, basis, rigid, &fe, &ms, error)) return false;
+    auto [ea, em] = summarize(fe, false);
+    const char* name = basis == Basis::Pde32 ? "pde32" : "pde8";
+    variants.push_back({{"basis", name}, {"rigid_removal", rigid}, {"mean_EA", ea}, {"max_EM", em}, {"fit_ms", ms}});
+    vt += std::string(" variant ") + name + (rigid ? " + rigid   " : " absolute  ") + ": mean E_An " + fmt("%.6f", ea) +
+          ", max E_Mn " + fmt("%.6f", em) + "\n";
+  }
+  j["pde_variants"] = variants;
   j["paper_rope"] = {{"pde", {{"mean_EA", 0.006986}, {"max_EM", 0.019478}}},
                      {"bspline", {{"mean_EA", 0.046644}, {"max_EM", 0.270942}}}};
   nlohmann::json rows = nlohmann::json::array();
@@ -158,6 +188,7 @@ bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* resul
        "   (paper's rope: 6.68, 13.91)\n";
   t += " predicted frames only: PDE " + fmt("%.6f", pde_ea_odd) + " / " + fmt("%.6f", pde_em_odd) + ", B-spline " +
        fmt("%.6f", bs_ea_odd) + " / " + fmt("%.6f", bs_em_odd) + "; PDE fit " + fmt("%.1f", pde_ms) + " ms\n";
+  t += vt;
   *result = j;
   if (table) *table = t;
   return true;
