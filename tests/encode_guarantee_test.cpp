@@ -52,6 +52,48 @@ TEST_P(Guarantee, EveryFrameWithinToleranceAndSizeMonotone) {
 INSTANTIATE_TEST_SUITE_P(CorpusExt, Guarantee,
                          ::testing::Values("horse-gallop", "chicken-crossing", "elastic-cow", "cloth-sphere", "crane"));
 
+// With a PDE model the frames are still exact to the grid, and between frames the output
+// follows the model: it must stay near the input's own in-between motion, not swing away.
+TEST(Guarantee, PdeModelKeepsTheGuaranteeAndSmoothInBetweens) {
+  if (!have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found";
+  Animation all = read_corpus_frames("horse-gallop", 9);
+  Animation even = all;
+  even.frames.clear();
+  for (size_t f = 0; f < all.frames.size(); f += 2) even.frames.push_back(all.frames[f]);
+  const double L = bbox_diagonal(all.frames[0]);
+  for (ModelChoice model : {ModelChoice::Pde8, ModelChoice::Pde32}) {
+    EncodeOptions opt;
+    opt.model = model;
+    opt.segment_frames = 2;
+    std::vector<uint8_t> bytes;
+    EncodeReport rep;
+    std::string err;
+    ASSERT_TRUE(encode_animation(even, opt, &bytes, &rep, &err)) << err;
+    EXPECT_LE(rep.error.max_error, opt.tolerance);
+    EXPECT_EQ(rep.segments, 2u);
+    EXPECT_GT(rep.model_bytes, 0u);
+    auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+    ASSERT_TRUE(dec) << err;
+    // Odd input frames were never seen by the encoder; the largest frame-to-frame step of
+    // the input bounds a plausible in-between's error.
+    std::vector<float> xyz(3 * size_t(all.vertex_count));
+    for (size_t f = 1; f < all.frames.size(); f += 2) {
+      dec->evaluate(double(f) / double(all.frames.size() - 1), xyz.data());
+      double worst = 0, step = 0;
+      for (size_t i = 0; i < xyz.size(); i += 3) {
+        double d2 = 0, s2 = 0;
+        for (int a = 0; a < 3; ++a) {
+          d2 += std::pow(double(xyz[i + a]) - all.frames[f][i + a], 2);
+          s2 += std::pow(double(all.frames[f + 1][i + a]) - all.frames[f - 1][i + a], 2);
+        }
+        worst = std::max(worst, std::sqrt(d2));
+        step = std::max(step, std::sqrt(s2));
+      }
+      EXPECT_LE(worst, step + opt.tolerance * L) << "frame " << f;
+    }
+  }
+}
+
 TEST(Guarantee, NoJumpsBetweenFrames) {
   if (!have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found";
   Animation anim = read_corpus_frames("cloth-sphere", 4, 10);
