@@ -72,6 +72,8 @@ bool SceneSimulation::advance_frame(std::string* error) {
     for (const Driven& d : driven_) {
       const Handle& hd = scene_.handles[d.handle];
       const double active = std::clamp(t, hd.start, hd.end) - hd.start;
+      // Pins and handles that have not started stay exactly at rest (no rounding drift).
+      if (active == 0 || (hd.velocity.isZero() && hd.angular_velocity == 0)) continue;
       const Eigen::AngleAxisd turn(hd.angular_velocity * active, hd.axis);
       const Eigen::Vector3d& x0 = solver_.rest_positions()[d.particle];
       solver_.set_position(d.particle, pivots_[d.handle] + turn * (x0 - pivots_[d.handle]) + hd.velocity * active);

@@ -59,6 +59,7 @@ bool XpbdSolver::init(const TetMesh& mesh, const Material& material, const XpbdW
   lambda_hyd_.assign(tets_.size(), 0.0);
   lambda_vol_.assign(tets_.size(), 0.0);
   lambda_edge_.assign(edges_.size(), 0.0);
+  pushed_.assign(x_.size(), 0.0);
   return true;
 }
 
@@ -151,17 +152,23 @@ void XpbdSolver::solve_edge(size_t e, double h2) {
   apply(id, len - edge.rest, g, material_.edge_compliance / h2, &lambda_edge_[e]);
 }
 
-void XpbdSolver::collide_ground() {
+void XpbdSolver::push_out_of_ground() {
   for (size_t i = 0; i < x_.size(); ++i) {
-    if (w_[i] == 0) continue;
     const double depth = world_.ground_height - up_.dot(x_[i]);
-    if (depth <= 0) continue;
+    if (depth <= 0 || w_[i] == 0) continue;
     x_[i] += depth * up_;
+    pushed_[i] += depth;
+  }
+}
+
+void XpbdSolver::apply_ground_friction() {
+  for (size_t i = 0; i < x_.size(); ++i) {
+    if (pushed_[i] <= 0) continue;
     // Coulomb friction in position form: the tangential slide this substep is cut by at
     // most friction * (normal correction).
     Eigen::Vector3d slide = x_[i] - prev_[i];
     slide -= up_.dot(slide) * up_;
-    const double len = slide.norm(), cap = world_.ground_friction * depth;
+    const double len = slide.norm(), cap = world_.ground_friction * pushed_[i];
     x_[i] -= len <= cap ? slide : Eigen::Vector3d(slide * (cap / len));
   }
 }
@@ -178,12 +185,16 @@ void XpbdSolver::substep(double h, int iterations) {
   std::fill(lambda_hyd_.begin(), lambda_hyd_.end(), 0.0);
   std::fill(lambda_vol_.begin(), lambda_vol_.end(), 0.0);
   std::fill(lambda_edge_.begin(), lambda_edge_.end(), 0.0);
+  std::fill(pushed_.begin(), pushed_.end(), 0.0);
   const double h2 = h * h;
   for (int it = 0; it < iterations; ++it) {
     for (size_t t = 0; t < tets_.size(); ++t) solve_tet(t, h2);
     for (size_t e = 0; e < edges_.size(); ++e) solve_edge(e, h2);
+    // Contact inside the loop, so the constraints see it and little penetration is left
+    // for the last projection to turn into velocity.
+    if (world_.ground) push_out_of_ground();
   }
-  if (world_.ground) collide_ground();
+  if (world_.ground) apply_ground_friction();
   const double keep = std::exp(-material_.damping * h);
   for (size_t i = 0; i < n; ++i) {
     if (w_[i] == 0) continue;

@@ -57,14 +57,16 @@ class XpbdSolver {
   void apply(const int id[4], double c, const Eigen::Vector3d g[4], double alpha_tilde, double* lambda);
   void solve_tet(size_t t, double h2);
   void solve_edge(size_t e, double h2);
-  void collide_ground();
+  void push_out_of_ground();
+  void apply_ground_friction();
 
   Material material_;
   XpbdWorld world_;
   Eigen::Vector3d up_{0, 1, 0};
   double mu_ = 0, lame_ = 0, gamma_ = 1;
   std::vector<Eigen::Vector3d> x_, prev_, v_, rest_;
-  std::vector<double> w_;  // inverse masses, 0 = kinematic
+  std::vector<double> w_;       // inverse masses, 0 = kinematic
+  std::vector<double> pushed_;  // ground correction this substep, metres
   std::vector<Tet> tets_;
   std::vector<Edge> edges_;
   std::vector<double> lambda_dev_, lambda_hyd_, lambda_vol_, lambda_edge_;
