@@ -110,6 +110,23 @@ bool tetrahedralize_surface(const std::vector<double>& xyz, const std::vector<ui
     fc.polygonlist[0].vertexlist = new int[3];
     for (int k = 0; k < 3; ++k) fc.polygonlist[0].vertexlist[k] = int(faces[3 * f + k]);
   }
+  // TetGen 1.5 frees its memory twice when it stops on a self-intersection (a crash), so
+  // look for intersections first with its detector (-d), which reports them as faces.
+  {
+    tetgenio found;
+    char detect[] = "pdQz";
+    try {
+      tetrahedralize(detect, &in, &found);
+    } catch (...) {
+      *error = "TetGen could not check the surface for self-intersections";
+      return false;
+    }
+    if (found.numberoftrifaces > 0) {
+      *error = "the surface intersects itself (" + std::to_string(found.numberoftrifaces) +
+               " triangles involved, first near vertex " + std::to_string(found.trifacelist[0]) + ")";
+      return false;
+    }
+  }
   // p: piecewise linear complex, Y: keep the boundary, Q: quiet, z: zero-based ids.
   char switches[128];
   int len = std::snprintf(switches, sizeof switches, "pYQz");
