@@ -184,7 +184,7 @@ bool load_scene_file(const std::string& path, Scene* scene, std::string* error) 
     *error = path + ": " + why;
     return false;
   }
-  if (scene->name.empty()) scene->name = std::filesystem::path(path).stem().string();
+  if (scene->name.empty()) scene->name = path;  // messages then name the file
   return true;
 }
 

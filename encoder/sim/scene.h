@@ -49,7 +49,7 @@ struct Material {
 };
 
 struct Scene {
-  std::string name;                // for messages
+  std::string name;                // for messages; a scene file without "name" uses its path
   std::string mesh_file;           // OBJ/PLY/OFF surface; empty when `generator` is used
   nlohmann::json generator;        // corpus/surfaces.h spec when mesh_file is empty
   double mesh_scale = 1;           // applied to the surface before `mesh_translate`
