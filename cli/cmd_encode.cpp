@@ -1,11 +1,11 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <filesystem>
 
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "encoder/encoder.h"
+#include "encoder/input.h"
 #include "encoder/io/files.h"
 
 namespace dcurve::cli {
@@ -44,18 +44,8 @@ Action add_encode(CLI::App& app) {
   return [o]() {
     Animation anim;
     std::string err;
-    std::error_code ec;
-    if (std::filesystem::is_directory(o->input, ec)) {
-      if (!read_frame_folder(o->input, &anim, &err)) {
-        std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
-        return 1;
-      }
-    } else if (std::filesystem::is_regular_file(o->input, ec)) {
-      std::fprintf(stderr, "dcurve encode: %s: scene input needs the simulator, which is not built yet\n",
-                   o->input.c_str());
-      return 1;
-    } else {
-      std::fprintf(stderr, "dcurve encode: %s: no such file or folder\n", o->input.c_str());
+    if (!load_animation_input(o->input, false, progress_bar("simulate"), &anim, &err)) {
+      std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
       return 1;
     }
     EncodeOptions eo;
