@@ -79,6 +79,17 @@ Curves extract_ok(const TestMesh& m, CurveOptions options = {}) {
   return curves;
 }
 
+// One curve through vertices 0 .. n-1 in order, u not yet computed.
+Curves one_curve(uint32_t n, bool closed) {
+  Curves c;
+  c.vertices.resize(n);
+  std::iota(c.vertices.begin(), c.vertices.end(), 0u);
+  c.offsets = {0, n};
+  c.closed = {uint8_t(closed ? 1 : 0)};
+  c.u.assign(n, 0.f);
+  return c;
+}
+
 uint32_t size_of(const Curves& c, uint32_t k) { return c.offsets[k + 1] - c.offsets[k]; }
 
 // u starts at 0, ends at 1 on open curves with >= 2 points, strictly below 1 at the end of a
@@ -239,11 +250,7 @@ TEST(Curves, ChordLengthAndCoordinateRangeRules) {
   bent.add(1, 0, 0);
   bent.add(1, 1, 0);
   bent.add(3, 1, 0);
-  Curves c;
-  c.vertices = {0, 1, 2, 3};
-  c.offsets = {0, 4};
-  c.closed = {0};
-  c.u.assign(4, 0.f);
+  Curves c = one_curve(4, false);
   parameterize_curve(&c, 0, bent.xyz, ParamRule::ChordLength);
   EXPECT_NEAR(c.u[2], 0.5, 1e-6);
   parameterize_curve(&c, 0, bent.xyz, ParamRule::CoordinateRange);
@@ -258,11 +265,7 @@ TEST(Curves, ClosedCurveUCountsTheClosingStep) {
   m.add(1, 0, 0);
   m.add(1, 1, 0);
   m.add(0, 1, 0);
-  Curves c;
-  c.vertices = {0, 1, 2, 3};
-  c.offsets = {0, 4};
-  c.closed = {1};
-  c.u.assign(4, 0.f);
+  Curves c = one_curve(4, true);
   parameterize_curve(&c, 0, m.xyz, ParamRule::ChordLength);
   EXPECT_EQ(c.u, std::vector<float>({0.f, 0.25f, 0.5f, 0.75f}));
 }
@@ -377,13 +380,8 @@ TEST(Curves, CheckPartitionCatchesEachBreak) {
   EXPECT_NE(error.find("more than one"), std::string::npos) << error;
 
   // Two far corners of the grid are never adjacent.
-  bad = Curves{};
-  bad.vertices.resize(12);
-  std::iota(bad.vertices.begin(), bad.vertices.end(), 0u);
+  bad = one_curve(12, false);
   std::swap(bad.vertices[1], bad.vertices[11]);
-  bad.offsets = {0, 12};
-  bad.closed = {0};
-  bad.u.assign(12, 0.f);
   EXPECT_FALSE(check_partition(bad, m.vertex_count(), m.faces, &error));
   EXPECT_NE(error.find("share no mesh edge"), std::string::npos) << error;
 
