@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -77,6 +78,13 @@ Curves extract_ok(const TestMesh& m, CurveOptions options = {}) {
   EXPECT_TRUE(extract_curves(m.xyz, m.vertex_count(), m.faces, options, &curves, &error)) << error;
   EXPECT_TRUE(check_partition(curves, m.vertex_count(), m.faces, &error)) << error;
   return curves;
+}
+
+// Vertices only (no faces), in the z = 0 plane.
+TestMesh planar_points(const std::vector<std::array<double, 2>>& xy) {
+  TestMesh m;
+  for (const auto& p : xy) m.add(p[0], p[1], 0.0);
+  return m;
 }
 
 // One curve through vertices 0 .. n-1 in order, u not yet computed.
@@ -245,11 +253,7 @@ TEST(Curves, ChordLengthAndCoordinateRangeRules) {
     }
   }
   // On a bent path they differ: chord length counts the y step, the x range rule does not.
-  TestMesh bent;
-  bent.add(0, 0, 0);
-  bent.add(1, 0, 0);
-  bent.add(1, 1, 0);
-  bent.add(3, 1, 0);
+  const TestMesh bent = planar_points({{0, 0}, {1, 0}, {1, 1}, {3, 1}});
   Curves c = one_curve(4, false);
   parameterize_curve(&c, 0, bent.xyz, ParamRule::ChordLength);
   EXPECT_NEAR(c.u[2], 0.5, 1e-6);
@@ -260,11 +264,7 @@ TEST(Curves, ChordLengthAndCoordinateRangeRules) {
 
 TEST(Curves, ClosedCurveUCountsTheClosingStep) {
   // A square ring of four unit steps: u = 0, 1/4, 1/2, 3/4.
-  TestMesh m;
-  m.add(0, 0, 0);
-  m.add(1, 0, 0);
-  m.add(1, 1, 0);
-  m.add(0, 1, 0);
+  const TestMesh m = planar_points({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
   Curves c = one_curve(4, true);
   parameterize_curve(&c, 0, m.xyz, ParamRule::ChordLength);
   EXPECT_EQ(c.u, std::vector<float>({0.f, 0.25f, 0.5f, 0.75f}));
