@@ -42,7 +42,18 @@ std::string short_name(const std::string& path) {
   return p.parent_path().filename().string() + "/" + p.filename().string();
 }
 
-void check_mesh(const std::string& path, const CurveOptions& options, bool print) {
+// u = 0 at each curve's start and 1 at an open curve's end (check_partition checks the rest).
+void expect_u_endpoints(const Curves& curves, const std::string& path) {
+  for (uint32_t c = 0; c < curves.curve_count(); ++c) {
+    const uint32_t b = curves.offsets[c], n = curves.offsets[c + 1] - b;
+    EXPECT_EQ(curves.u[b], 0.f) << path << " curve " << c;
+    if (n >= 2 && !curves.closed[c]) {
+      EXPECT_EQ(curves.u[b + n - 1], 1.f) << path << " curve " << c;
+    }
+  }
+}
+
+void check_mesh(const std::string& path, const CurveOptions& options) {
   std::vector<float> xyz;
   std::vector<uint32_t> faces;
   std::string error;
@@ -55,24 +66,16 @@ void check_mesh(const std::string& path, const CurveOptions& options, bool print
   const double cpu_ms = 1000.0 * double(std::clock() - c0) / CLOCKS_PER_SEC;
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_TRUE(check_partition(curves, V, faces, &error)) << path << ": " << error;
-  for (uint32_t c = 0; c < curves.curve_count(); ++c) {
-    const uint32_t b = curves.offsets[c], n = curves.offsets[c + 1] - b;
-    ASSERT_EQ(curves.u[b], 0.f) << path << " curve " << c;
-    if (n >= 2 && !curves.closed[c]) {
-      ASSERT_EQ(curves.u[b + n - 1], 1.f) << path << " curve " << c;
-    }
-    for (uint32_t i = b + 1; i < b + n; ++i)
-      ASSERT_GE(curves.u[i], curves.u[i - 1]) << path << " curve " << c;
-  }
+  expect_u_endpoints(curves, path);
   const CurveReport r = curve_report(curves, xyz);
   uint32_t closed = 0;
   for (uint8_t f : curves.closed) closed += f;
-  if (print)
-    std::printf("| %-32s | %6u | %2u | %6u | %5u | %6.1f | %6.1f | %6.4f | %6.1f | %6.1f | %6.1f |\n",
-                short_name(path).c_str(), V, options.target_points, r.curves, closed, r.mean_points_per_curve,
-                r.median_points_per_curve, r.short_curve_vertex_fraction, r.mean_turning_angle_deg, ms, cpu_ms);
+  std::printf("| %-32s | %6u | %2u | %6u | %5u | %6.1f | %6.1f | %6.4f | %6.1f | %6.1f | %6.1f |\n",
+              short_name(path).c_str(), V, options.target_points, r.curves, closed, r.mean_points_per_curve,
+              r.median_points_per_curve, r.short_curve_vertex_fraction, r.mean_turning_angle_deg, ms, cpu_ms);
   // Quality bars from the issue: few very short curves, runs far longer than a few points, and
-  // no random walks (a walk choosing random neighbours turns by about 80-90 degrees on average).
+  // no random walks (linking edges in file order, the next test's baseline, turns by 54 to 75
+  // degrees on average on the irregular meshes here).
   EXPECT_LT(r.short_curve_vertex_fraction, 0.03) << path;
   EXPECT_GT(r.mean_points_per_curve, 12.0) << path;
   EXPECT_LT(r.mean_turning_angle_deg, 50.0) << path;
@@ -83,11 +86,7 @@ TEST(CurvesCorpus, EveryMeshPartitionsIntoGoodCurves) {
   if (meshes.empty()) GTEST_SKIP() << "corpus-ext not found at " << DCURVE_CORPUS_EXT;
   std::printf("| mesh | vertices | target | curves | closed | mean pts | median pts | short frac | mean turn deg | wall ms | cpu ms |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (uint32_t target : {64u, 32u}) {
-    CurveOptions options;
-    options.target_points = target;
-    for (const std::string& path : meshes) check_mesh(path, options, true);
-  }
+  for (const std::string& path : meshes) check_mesh(path, CurveOptions{});
 }
 
 // The same linking and cutting without a direction field, straightness passes or joins: edges
@@ -116,13 +115,12 @@ TEST(CurvesCorpus, BeatsNaiveLinkingAndComparesURules) {
     std::string error;
     ASSERT_TRUE(read_mesh(path, &xyz, &faces, &error)) << error;
     const uint32_t V = uint32_t(xyz.size() / 3);
-    Curves chord, coord;
-    CurveOptions options;
-    ASSERT_TRUE(extract_curves(xyz, V, faces, options, &chord, &error)) << error;
-    options.u_rule = ParamRule::CoordinateRange;
-    ASSERT_TRUE(extract_curves(xyz, V, faces, options, &coord, &error)) << error;
+    Curves chord;
+    ASSERT_TRUE(extract_curves(xyz, V, faces, CurveOptions{}, &chord, &error)) << error;
+    Curves coord = chord;
+    for (uint32_t c = 0; c < coord.curve_count(); ++c) parameterize_curve(&coord, c, xyz, ParamRule::CoordinateRange);
     ASSERT_TRUE(check_partition(coord, V, faces, &error)) << path << ": " << error;
-    ASSERT_EQ(chord.vertices, coord.vertices);  // the rule changes u only
+    expect_u_endpoints(coord, path);
     double u_diff = 0.0;
     size_t zero_steps = 0, steps = 0;
     for (uint32_t c = 0; c < coord.curve_count(); ++c)

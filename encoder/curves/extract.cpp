@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 #include "encoder/curves/cut_to_target.h"
 #include "encoder/curves/direction_fields.h"
 #include "encoder/curves/link_paths.h"
