@@ -10,6 +10,7 @@
 
 #include "encoder/curves/extract.h"
 #include "encoder/curves/report.h"
+#include "encoder/curves/report_json.h"
 
 namespace dcurve {
 namespace {
@@ -143,6 +144,34 @@ TEST(Curves, BendWeightTradesCurveCountForTurns) {
   EXPECT_LT(reports[0].mean_turning_angle_deg, reports[2].mean_turning_angle_deg);
   EXPECT_GE(reports[0].curves, reports[1].curves);
   EXPECT_GE(reports[1].curves, reports[2].curves);
+}
+
+TEST(Curves, ReportFiguresAndJsonKeys) {
+  // Curves of 1, 2, 5, 8 and 16 points along the two straight rows of a 16 x 2 grid.
+  const TestMesh m = grid(16, 2);
+  Curves c;
+  c.vertices.resize(32);
+  std::iota(c.vertices.begin(), c.vertices.end(), 0u);
+  c.offsets = {0, 1, 3, 8, 16, 32};
+  c.closed = {0, 0, 0, 0, 0};
+  c.u.assign(32, 0.f);
+  const CurveReport r = curve_report(c, m.xyz);
+  EXPECT_EQ(r.curves, 5u);
+  EXPECT_DOUBLE_EQ(r.mean_points_per_curve, 32.0 / 5.0);
+  EXPECT_DOUBLE_EQ(r.median_points_per_curve, 5.0);
+  EXPECT_DOUBLE_EQ(r.short_curve_vertex_fraction, 3.0 / 32.0);
+  EXPECT_NEAR(r.mean_turning_angle_deg, 0.0, 1e-9);  // all straight along x
+  const nlohmann::json j = curve_report_json(r);
+  for (const char* key : {"curves", "mean_points_per_curve", "median_points_per_curve", "short_curve_vertex_fraction",
+                          "mean_turning_angle_deg"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["curves"], 5);
+
+  // A closed square of 4 turns by 90 degrees at every vertex, the wrap included.
+  const TestMesh square = planar_points({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  EXPECT_NEAR(curve_report(one_curve(4, true), square.xyz).mean_turning_angle_deg, 90.0, 1e-9);
+  EXPECT_NEAR(curve_report(one_curve(4, false), square.xyz).mean_turning_angle_deg, 90.0, 1e-9);
+  EXPECT_DOUBLE_EQ(curve_report(Curves{}, square.xyz).mean_points_per_curve, 0.0);
 }
 
 TEST(Curves, TargetLengthBoundsEveryCurve) {
