@@ -135,5 +135,34 @@ TEST(CurvesCorpus, EveryMeshPartitionsIntoGoodCurves) {
   std::printf("%s\n%s", table.c_str(), compare.c_str());
 }
 
+// bend_weight trades curve count for straightness on real meshes, as it does on a grid.
+TEST(CurvesCorpus, BendWeightSweep) {
+  const fs::path root(DCURVE_CORPUS_EXT);
+  const std::vector<std::string> meshes = {(root / "horse-gallop" / "frame_00000.obj").string(),
+                                           (root / "crane" / "frame_00000.obj").string()};
+  std::error_code ec;
+  if (!fs::exists(meshes[0], ec) || !fs::exists(meshes[1], ec)) GTEST_SKIP() << "corpus-ext not found";
+  std::printf("| mesh | bend_weight | curves | mean pts | short frac | mean turn deg |\n|---|---|---|---|---|---|\n");
+  for (const std::string& path : meshes) {
+    std::vector<float> xyz;
+    std::vector<uint32_t> faces;
+    std::string error;
+    ASSERT_TRUE(read_mesh(path, &xyz, &faces, &error)) << error;
+    std::vector<CurveReport> reports;
+    for (double w : {0.0, 0.3, 1.0}) {
+      CurveOptions options;
+      options.bend_weight = w;
+      Curves curves;
+      ASSERT_TRUE(extract_curves(xyz, uint32_t(xyz.size() / 3), faces, options, &curves, &error)) << error;
+      reports.push_back(curve_report(curves, xyz));
+      const CurveReport& r = reports.back();
+      std::printf("| %s | %.1f | %u | %.1f | %.4f | %.1f |\n", short_name(path).c_str(), w, r.curves,
+                  r.mean_points_per_curve, r.short_curve_vertex_fraction, r.mean_turning_angle_deg);
+    }
+    EXPECT_LT(reports[0].curves, reports[2].curves) << path;
+    EXPECT_GT(reports[0].mean_turning_angle_deg, reports[2].mean_turning_angle_deg) << path;
+  }
+}
+
 }  // namespace
 }  // namespace dcurve
