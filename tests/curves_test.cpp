@@ -249,6 +249,21 @@ TEST(Curves, OnlyIsolatedVertices) {
   EXPECT_EQ(c.u, std::vector<float>({0.f, 0.f}));
 }
 
+TEST(Curves, DegenerateGeometry) {
+  // Every point in one place (zero-area faces, no normals), then every point on a line.
+  TestMesh m = grid(6, 5);
+  std::fill(m.xyz.begin(), m.xyz.end(), 1.f);
+  for (ParamRule rule : {ParamRule::ChordLength, ParamRule::CoordinateRange}) {
+    CurveOptions opt;
+    opt.u_rule = rule;
+    const Curves c = extract_ok(m, opt);
+    expect_u_endpoints(c);
+    for (float u : c.u) EXPECT_TRUE(std::isfinite(u));
+  }
+  for (uint32_t v = 0; v < m.vertex_count(); ++v) m.xyz[3 * v] = float(v);
+  expect_u_endpoints(extract_ok(m));
+}
+
 TEST(Curves, Deterministic) {
   TestMesh m = tube(16, 20, 1.5, true);
   append(&m, grid(20, 10), 50.0);
