@@ -49,7 +49,8 @@ bool extract_curves(const std::vector<float>& rest_xyz, uint32_t vertex_count,
   if (!curves_detail::build_surface_graph(rest_xyz, vertex_count, faces, &graph, error)) return false;
 
   const std::vector<curves_detail::DirectionField> fields = curves_detail::candidate_fields(graph, rest_xyz, faces);
-  const curves_detail::LinkParams params;
+  curves_detail::LinkParams params;
+  params.max_join_bend = options.bend_weight > 0.0 ? 1.0 / options.bend_weight : HUGE_VAL;
   std::vector<double> best_cost(graph.component_count, HUGE_VAL);
   std::vector<uint8_t> improved(graph.component_count);
   // Components never share an edge, so each keeps the links of its own cheapest field.

@@ -30,7 +30,9 @@ struct LinkParams {
       {180.0, 0, false},  // hairpins between parallel runs: cut there first if too long
   };
   uint32_t join_sweeps = 2;     // passes of join_runs_through_neighbours (0 = none)
-  double max_join_bend = 2.0;   // its limit on added bend, in 1 - cos units
+  // Its limit on added bend, in 1 - cos units. extract_curves sets 1 / bend_weight: a join is
+  // made only when its bends cost less than the curve it saves.
+  double max_join_bend = 2.0;
 };
 
 // Two neighbours per vertex (kNoVertex when unused); a vertex with two is inside a curve.
