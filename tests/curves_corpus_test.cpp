@@ -93,6 +93,10 @@ TEST(CurvesCorpus, EveryMeshPartitionsIntoGoodCurves) {
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ASSERT_TRUE(check_partition(curves, V, faces, &error)) << path << ": " << error;
     expect_u_endpoints(curves, path);
+    // corpus-ext has no duplicate vertices, so chord-length u strictly increases.
+    for (uint32_t c = 0; c < curves.curve_count(); ++c)
+      for (uint32_t i = curves.offsets[c] + 1; i < curves.offsets[c + 1]; ++i)
+        ASSERT_GT(curves.u[i], curves.u[i - 1]) << path << " curve " << c;
     const CurveReport r = curve_report(curves, xyz);
     uint32_t closed = 0;
     for (uint8_t f : curves.closed) closed += f;
