@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
 #include "encoder/curves/extract.h"
 #include "encoder/curves/report.h"
+#include "encoder/curves/report_json.h"
 
 namespace dcurve {
 namespace {
@@ -79,6 +81,24 @@ Curves extract_ok(const TestMesh& m, CurveOptions options = {}) {
   return curves;
 }
 
+// Vertices only (no faces), in the z = 0 plane.
+TestMesh planar_points(const std::vector<std::array<double, 2>>& xy) {
+  TestMesh m;
+  for (const auto& p : xy) m.add(p[0], p[1], 0.0);
+  return m;
+}
+
+// One curve through vertices 0 .. n-1 in order, u not yet computed.
+Curves one_curve(uint32_t n, bool closed) {
+  Curves c;
+  c.vertices.resize(n);
+  std::iota(c.vertices.begin(), c.vertices.end(), 0u);
+  c.offsets = {0, n};
+  c.closed = {uint8_t(closed ? 1 : 0)};
+  c.u.assign(n, 0.f);
+  return c;
+}
+
 uint32_t size_of(const Curves& c, uint32_t k) { return c.offsets[k + 1] - c.offsets[k]; }
 
 // u starts at 0, ends at 1 on open curves with >= 2 points, strictly below 1 at the end of a
@@ -124,6 +144,34 @@ TEST(Curves, BendWeightTradesCurveCountForTurns) {
   EXPECT_LT(reports[0].mean_turning_angle_deg, reports[2].mean_turning_angle_deg);
   EXPECT_GE(reports[0].curves, reports[1].curves);
   EXPECT_GE(reports[1].curves, reports[2].curves);
+}
+
+TEST(Curves, ReportFiguresAndJsonKeys) {
+  // Curves of 1, 2, 5, 8 and 16 points along the two straight rows of a 16 x 2 grid.
+  const TestMesh m = grid(16, 2);
+  Curves c;
+  c.vertices.resize(32);
+  std::iota(c.vertices.begin(), c.vertices.end(), 0u);
+  c.offsets = {0, 1, 3, 8, 16, 32};
+  c.closed = {0, 0, 0, 0, 0};
+  c.u.assign(32, 0.f);
+  const CurveReport r = curve_report(c, m.xyz);
+  EXPECT_EQ(r.curves, 5u);
+  EXPECT_DOUBLE_EQ(r.mean_points_per_curve, 32.0 / 5.0);
+  EXPECT_DOUBLE_EQ(r.median_points_per_curve, 5.0);
+  EXPECT_DOUBLE_EQ(r.short_curve_vertex_fraction, 3.0 / 32.0);
+  EXPECT_NEAR(r.mean_turning_angle_deg, 0.0, 1e-9);  // all straight along x
+  const nlohmann::json j = curve_report_json(r);
+  for (const char* key : {"curves", "mean_points_per_curve", "median_points_per_curve", "short_curve_vertex_fraction",
+                          "mean_turning_angle_deg"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["curves"], 5);
+
+  // A closed square of 4 turns by 90 degrees at every vertex, the wrap included.
+  const TestMesh square = planar_points({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  EXPECT_NEAR(curve_report(one_curve(4, true), square.xyz).mean_turning_angle_deg, 90.0, 1e-9);
+  EXPECT_NEAR(curve_report(one_curve(4, false), square.xyz).mean_turning_angle_deg, 90.0, 1e-9);
+  EXPECT_DOUBLE_EQ(curve_report(Curves{}, square.xyz).mean_points_per_curve, 0.0);
 }
 
 TEST(Curves, TargetLengthBoundsEveryCurve) {
@@ -201,6 +249,21 @@ TEST(Curves, OnlyIsolatedVertices) {
   EXPECT_EQ(c.u, std::vector<float>({0.f, 0.f}));
 }
 
+TEST(Curves, DegenerateGeometry) {
+  // Every point in one place (zero-area faces, no normals), then every point on a line.
+  TestMesh m = grid(6, 5);
+  std::fill(m.xyz.begin(), m.xyz.end(), 1.f);
+  for (ParamRule rule : {ParamRule::ChordLength, ParamRule::CoordinateRange}) {
+    CurveOptions opt;
+    opt.u_rule = rule;
+    const Curves c = extract_ok(m, opt);
+    expect_u_endpoints(c);
+    for (float u : c.u) EXPECT_TRUE(std::isfinite(u));
+  }
+  for (uint32_t v = 0; v < m.vertex_count(); ++v) m.xyz[3 * v] = float(v);
+  expect_u_endpoints(extract_ok(m));
+}
+
 TEST(Curves, Deterministic) {
   TestMesh m = tube(16, 20, 1.5, true);
   append(&m, grid(20, 10), 50.0);
@@ -234,16 +297,8 @@ TEST(Curves, ChordLengthAndCoordinateRangeRules) {
     }
   }
   // On a bent path they differ: chord length counts the y step, the x range rule does not.
-  TestMesh bent;
-  bent.add(0, 0, 0);
-  bent.add(1, 0, 0);
-  bent.add(1, 1, 0);
-  bent.add(3, 1, 0);
-  Curves c;
-  c.vertices = {0, 1, 2, 3};
-  c.offsets = {0, 4};
-  c.closed = {0};
-  c.u.assign(4, 0.f);
+  const TestMesh bent = planar_points({{0, 0}, {1, 0}, {1, 1}, {3, 1}});
+  Curves c = one_curve(4, false);
   parameterize_curve(&c, 0, bent.xyz, ParamRule::ChordLength);
   EXPECT_NEAR(c.u[2], 0.5, 1e-6);
   parameterize_curve(&c, 0, bent.xyz, ParamRule::CoordinateRange);
@@ -253,16 +308,8 @@ TEST(Curves, ChordLengthAndCoordinateRangeRules) {
 
 TEST(Curves, ClosedCurveUCountsTheClosingStep) {
   // A square ring of four unit steps: u = 0, 1/4, 1/2, 3/4.
-  TestMesh m;
-  m.add(0, 0, 0);
-  m.add(1, 0, 0);
-  m.add(1, 1, 0);
-  m.add(0, 1, 0);
-  Curves c;
-  c.vertices = {0, 1, 2, 3};
-  c.offsets = {0, 4};
-  c.closed = {1};
-  c.u.assign(4, 0.f);
+  const TestMesh m = planar_points({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  Curves c = one_curve(4, true);
   parameterize_curve(&c, 0, m.xyz, ParamRule::ChordLength);
   EXPECT_EQ(c.u, std::vector<float>({0.f, 0.25f, 0.5f, 0.75f}));
 }
@@ -377,13 +424,8 @@ TEST(Curves, CheckPartitionCatchesEachBreak) {
   EXPECT_NE(error.find("more than one"), std::string::npos) << error;
 
   // Two far corners of the grid are never adjacent.
-  bad = Curves{};
-  bad.vertices.resize(12);
-  std::iota(bad.vertices.begin(), bad.vertices.end(), 0u);
+  bad = one_curve(12, false);
   std::swap(bad.vertices[1], bad.vertices[11]);
-  bad.offsets = {0, 12};
-  bad.closed = {0};
-  bad.u.assign(12, 0.f);
   EXPECT_FALSE(check_partition(bad, m.vertex_count(), m.faces, &error));
   EXPECT_NE(error.find("share no mesh edge"), std::string::npos) << error;
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 #include "encoder/curves/cut_to_target.h"
 #include "encoder/curves/direction_fields.h"
 #include "encoder/curves/link_paths.h"
@@ -50,30 +49,28 @@ bool extract_curves(const std::vector<float>& rest_xyz, uint32_t vertex_count,
   if (!curves_detail::build_surface_graph(rest_xyz, vertex_count, faces, &graph, error)) return false;
 
   const std::vector<curves_detail::DirectionField> fields = curves_detail::candidate_fields(graph, rest_xyz, faces);
-  const curves_detail::LinkParams params;
+  curves_detail::LinkParams params;
+  params.max_join_bend = options.bend_weight > 0.0 ? 1.0 / options.bend_weight : HUGE_VAL;
   std::vector<double> best_cost(graph.component_count, HUGE_VAL);
-  std::vector<uint32_t> best_field(graph.component_count, 0);
-  std::vector<PathLinks> links;
-  links.reserve(fields.size());
-  Curves paths;
-  for (uint32_t f = 0; f < fields.size(); ++f) {
-    links.push_back(curves_detail::link_along_field(graph, rest_xyz, fields[f].dir, params));
-    curves_detail::assemble_paths(links.back(), &paths);
-    const Curves cut = curves_detail::cut_to_target(paths, rest_xyz, options.target_points, options.bend_weight);
-    const std::vector<double> cost = component_costs(cut, graph, rest_xyz, options.bend_weight);
-    for (uint32_t c = 0; c < graph.component_count; ++c)
-      if (cost[c] < best_cost[c]) {  // strict: the earlier field wins ties
-        best_cost[c] = cost[c];
-        best_field[c] = f;
-      }
-  }
-  // Components never share an edge, so each keeps the links of its own best field.
+  std::vector<uint8_t> improved(graph.component_count);
+  // Components never share an edge, so each keeps the links of its own cheapest field.
   PathLinks chosen;
   chosen.nbr.resize(size_t(vertex_count) * 2);
-  for (uint32_t v = 0; v < vertex_count; ++v) {
-    const PathLinks& from = links[best_field[graph.component[v]]];
-    chosen.nbr[2 * v] = from.nbr[2 * v];
-    chosen.nbr[2 * v + 1] = from.nbr[2 * v + 1];
+  Curves paths;
+  for (const curves_detail::DirectionField& field : fields) {
+    const PathLinks links = curves_detail::link_along_field(graph, rest_xyz, field.dir, params);
+    curves_detail::assemble_paths(links, &paths);
+    const Curves cut = curves_detail::cut_to_target(paths, rest_xyz, options.target_points, options.bend_weight);
+    const std::vector<double> cost = component_costs(cut, graph, rest_xyz, options.bend_weight);
+    for (uint32_t c = 0; c < graph.component_count; ++c) {
+      improved[c] = cost[c] < best_cost[c];  // strict: the earlier field wins ties
+      if (improved[c]) best_cost[c] = cost[c];
+    }
+    for (uint32_t v = 0; v < vertex_count; ++v)
+      if (improved[graph.component[v]]) {
+        chosen.nbr[2 * v] = links.nbr[2 * v];
+        chosen.nbr[2 * v + 1] = links.nbr[2 * v + 1];
+      }
   }
   curves_detail::assemble_paths(chosen, &paths);
   Curves result = curves_detail::cut_to_target(paths, rest_xyz, options.target_points, options.bend_weight);

@@ -41,12 +41,13 @@ bool extract_curves(const std::vector<float>& rest_xyz, uint32_t vertex_count,
 
 // Cuts curve `curve` so that its local vertex index `at` (1 <= at < size) starts a new curve
 // inserted right after it; recomputes u of both parts with `rule`. A closed curve becomes one
-// open curve rotated to start at `at` instead. Throws std::invalid_argument on a bad
-// `curve` or `at` (a caller bug, not bad data).
+// open curve rotated to start at `at` instead. curves->u must be parallel to vertices.
+// Throws std::invalid_argument on a bad `curve` or `at` (a caller bug, not bad data).
 void split_curve(Curves* curves, uint32_t curve, uint32_t at, const std::vector<float>& rest_xyz,
                  ParamRule rule);
 
 // Recomputes u of curve `curve` from rest_xyz with `rule` (used after any edit of a curve).
+// curves->u must be parallel to vertices; throws std::invalid_argument otherwise.
 void parameterize_curve(Curves* curves, uint32_t curve, const std::vector<float>& rest_xyz,
                         ParamRule rule);
 

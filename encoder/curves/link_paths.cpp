@@ -1,10 +1,10 @@
 #include "encoder/curves/link_paths.h"
 
-#include "encoder/curves/join_runs.h"
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+
+#include "encoder/curves/join_runs.h"
 
 namespace dcurve {
 namespace curves_detail {

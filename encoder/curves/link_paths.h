@@ -14,7 +14,8 @@ constexpr uint32_t kNoVertex = UINT32_MAX;
 
 // One sweep over the edges (best aligned first). Later passes accept sharper turns, so a run
 // first grows as straight as it can and only then is joined to its neighbours around a bend;
-// the cut to the target length (extract.cpp) later prefers to cut at those bends.
+// the cut to the target length (cut_to_target.h) then cuts at those bends where they cost
+// more than a new curve.
 struct LinkPass {
   double max_turn_deg;     // largest turn a new link may create at either end
   uint32_t short_points;   // > 0: one of the two runs must have fewer points than this
@@ -29,7 +30,9 @@ struct LinkParams {
       {180.0, 0, false},  // hairpins between parallel runs: cut there first if too long
   };
   uint32_t join_sweeps = 2;     // passes of join_runs_through_neighbours (0 = none)
-  double max_join_bend = 2.0;   // its limit on added bend, in 1 - cos units
+  // Its limit on added bend, in 1 - cos units. extract_curves sets 1 / bend_weight: a join is
+  // made only when its bends cost less than the curve it saves.
+  double max_join_bend = 2.0;
 };
 
 // Two neighbours per vertex (kNoVertex when unused); a vertex with two is inside a curve.
