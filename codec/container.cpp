@@ -16,8 +16,7 @@ namespace dcurve {
 namespace {
 
 constexpr char kMagic[4] = {'D', 'C', 'R', 'V'};
-constexpr size_t kHeaderBytes = 20;
-constexpr size_t kSectionHeaderBytes = 28;
+constexpr size_t kHeaderBytes = kContainerHeaderBytes;
 constexpr uint16_t kSectionRequired = 1;
 constexpr uint16_t kSectionZstd = 2;
 constexpr uint16_t kSectionKnownFlags = kSectionRequired | kSectionZstd;
@@ -257,6 +256,17 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   return std::move(out.data());
 }
 
+bool peek_header(const uint8_t* data, size_t size, ContainerHeader* h) {
+  ByteReader r(data, size);
+  const uint8_t* magic = r.take(4);
+  if (!magic || std::memcmp(magic, kMagic, 4) != 0) return false;
+  h->version_major = r.u16();
+  h->version_minor = r.u16();
+  h->flags = r.u32();
+  h->section_count = r.u32();
+  return r.ok;
+}
+
 float quantize_curve_u(float u) { return u_from_fixed(u_to_fixed(u)); }
 
 bool read_container(const uint8_t* data, size_t size, Model* model, std::string* error,
@@ -296,7 +306,8 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     if (crc32c(p, size_t(stored), crc_head) != section_crc && kVerifyChecksums)
       return fail(error, "section " + name + " checksum mismatch");
     if (flags & ~kSectionKnownFlags) return fail(error, "section " + name + " has unknown flags");
-    if (infos) infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), stored, raw_size});
+    if (infos)
+      infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), header_at, stored, raw_size, -1});
 
     int known = -1;
     for (int k = 0; k < 5; ++k) if (order[k] == tag) known = k;
@@ -323,6 +334,7 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     bool ok = false;
     if (tag == kMeta) ok = parse_meta(s, model);
     else if (tag == kFaces) {
+      if (infos && !raw.empty()) infos->back().face_layout = raw[0];
       std::string why;
       if (!decode_faces(raw.data(), raw.size(), &model->faces, &why)) return fail(error, "section FACE: " + why);
       s.take(raw.size());
