@@ -63,11 +63,13 @@ std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, boo
 }
 
 std::vector<uint8_t> face_bytes(const Model& m, const WriteOptions& options) {
-  using Layout = WriteOptions::FaceLayout;
-  if (options.face_layout == Layout::Traversal) return encode_faces(m.faces, FaceOrder::Traversal);
   std::vector<uint8_t> exact = encode_faces(m.faces, FaceOrder::Exact);
-  if (options.face_layout == Layout::Exact) return exact;
+  if (options.face_layout == WriteOptions::FaceLayout::Exact) return exact;
+  // Traversal may reorder triangles; other parts of the file (the residual coder's
+  // neighbours) were built on model.faces, so it is used only when it gives them back as is.
   std::vector<uint8_t> traversal = encode_faces(m.faces, FaceOrder::Traversal);
+  std::vector<uint32_t> back;
+  if (!decode_faces(traversal.data(), traversal.size(), &back, nullptr) || back != m.faces) return exact;
   bool unused;
   return stored_form(traversal, options.zstd_level, &unused).size() <
                  stored_form(exact, options.zstd_level, &unused).size()

@@ -16,9 +16,10 @@ constexpr uint16_t kFormatVersionMinor = 0;
 
 struct WriteOptions {
   bool connectivity = true;  // store faces; engines that already hold the mesh can drop them
-  // Vertex ids are never renumbered. Smallest may reorder triangles and rotate their corners
-  // (windings kept) when that codes smaller; Exact keeps the list as given (codec/faces.h).
-  enum class FaceLayout { Smallest, Exact, Traversal };
+  // A reader always gets model.faces back exactly. Smallest uses the FACE Traversal layout
+  // when model.faces is already in traversal_order (codec/faces.h) and that codes smaller;
+  // Exact always uses the Exact layout.
+  enum class FaceLayout { Smallest, Exact };
   FaceLayout face_layout = FaceLayout::Smallest;
   int zstd_level = 19;       // 1..22
 };

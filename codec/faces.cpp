@@ -244,6 +244,13 @@ std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder 
   return order == FaceOrder::Exact ? encode_exact(faces) : encode_traversal(faces);
 }
 
+std::vector<uint32_t> traversal_order(const std::vector<uint32_t>& faces) {
+  std::vector<uint8_t> bytes = encode_traversal(faces);
+  std::vector<uint32_t> out;
+  decode_faces(bytes.data(), bytes.size(), &out, nullptr);
+  return out;
+}
+
 bool decode_faces(const uint8_t* bytes, size_t size, std::vector<uint32_t>* faces, std::string* error) {
   ByteReader r(bytes, size);
   const uint8_t layout = r.u8();
