@@ -116,8 +116,7 @@ std::vector<uint8_t> curve_bytes(const Model& m) {
   for (uint32_t i = 0; i < c.curve_count(); ++i) w.varint(uint64_t(c.offsets[i + 1] - c.offsets[i]) << 1 | c.closed[i]);
   int64_t prev = 0;
   for (uint32_t v : c.vertices) {
-    int64_t d = int64_t(v) - prev;
-    w.varint(uint64_t((d << 1) ^ (d >> 63)));
+    w.varint(zigzag_encode(int64_t(v) - prev));
     prev = v;
   }
   // u as 16-bit fixed point: 1/65535 of a curve is far below any tolerance the fit sees.
@@ -186,9 +185,7 @@ bool parse_curves(ByteReader& r, Model* m) {
   c.vertices.resize(size_t(total));
   int64_t prev = 0;
   for (auto& v : c.vertices) {
-    uint64_t z = r.varint();
-    prev += int64_t(z >> 1) ^ -int64_t(z & 1);
-    if (prev < 0 || prev > UINT32_MAX) return false;
+    if (!add_zigzag_delta(prev, r.varint(), &prev) || prev < 0 || prev > UINT32_MAX) return false;
     v = uint32_t(prev);
   }
   c.u.resize(size_t(total));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "codec/basis.h"
 
@@ -10,6 +11,13 @@ namespace {
 bool fail(std::string* error, const std::string& msg) {
   if (error) *error = msg;
   return false;
+}
+// double -> float, saturating to +-inf instead of the undefined conversion of an
+// out-of-range value (the finiteness checks after building then reject the file).
+float to_float(double v) {
+  if (v > double(std::numeric_limits<float>::max())) return std::numeric_limits<float>::infinity();
+  if (v < -double(std::numeric_limits<float>::max())) return -std::numeric_limits<float>::infinity();
+  return float(v);
 }
 constexpr int kMaxTimeTerms = 4;
 constexpr int kMaxSpaceTerms = 8;
@@ -86,7 +94,7 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
           for (int it = 0; it < tc; ++it) {
             double acc = 0;
             for (int is = 0; is < sc; ++is) acc += double(cm.coeffs[size_t(it) * sc + is]) * space[is];
-            weights_[weights_at++] = float(acc);
+            weights_[weights_at++] = to_float(acc);
           }
         }
       motions_.push_back(cmod);
@@ -98,7 +106,7 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
       for (uint32_t f = span.first; f <= span.last; ++f) {
         float* d = corrections_.data() + corrections_at;
         const int32_t* qf = q.data() + size_t(f) * n;
-        for (size_t i = 0; i < n; ++i) d[i] = float(m.residual.origin[i % 3] + m.residual.step * double(qf[i]));
+        for (size_t i = 0; i < n; ++i) d[i] = to_float(m.residual.origin[i % 3] + m.residual.step * double(qf[i]));
         apply_model(span, len ? double(f - span.first) / len : 0.0, -1.f, d);
         corrections_at += n;
       }
@@ -136,7 +144,7 @@ void FrameEvaluator::apply_model(const Span& span, double tau, float sign, float
     for (int a = 0; a < cm.axes; ++a) {
       double t[kMaxTimeTerms] = {0, 0, 0, 0};
       basis_time(cm.basis[a], cm.basis_case[a], cm.time_param[a], tau, t);
-      for (int i = 0; i < kMaxTimeTerms; ++i) time[a][i] = float(t[i]);
+      for (int i = 0; i < kMaxTimeTerms; ++i) time[a][i] = to_float(t[i]);
     }
     const uint32_t begin = curves_->offsets[cm.curve], end = curves_->offsets[cm.curve + 1];
     const uint32_t* ids = curves_->vertices.data() + begin;

@@ -236,8 +236,7 @@ void print_face_sizes() {
     ByteWriter delta;  // container v0's coder: index deltas as zigzag varints
     int64_t prev = 0;
     for (uint32_t i : a.faces) {
-      int64_t d = int64_t(i) - prev;
-      delta.varint((uint64_t(d) << 1) ^ uint64_t(d >> 63));
+      delta.varint(zigzag_encode(int64_t(i) - prev));
       prev = i;
     }
     double meshopt = -1;
