@@ -147,6 +147,11 @@ TEST(DecoderEval, CAbiMatchesTheCppApi) {
   EXPECT_NE(dcurve_open_memory(bytes.data(), 10, &bad, small, sizeof small), 0);
   EXPECT_EQ(bad, nullptr);
   EXPECT_EQ(small[7], '\0');
+  EXPECT_EQ(dcurve_vertex_count(nullptr), 0u);
+  EXPECT_EQ(dcurve_faces(nullptr), nullptr);
+  dcurve_evaluate(nullptr, 0.5, xyz.data());
+  EXPECT_NE(dcurve_compute_normals(nullptr, xyz.data(), n.data()), 0);
+  EXPECT_EQ(dcurve_open_memory(bytes.data(), bytes.size(), nullptr, err, sizeof err), 2);
   EXPECT_NE(dcurve_open_file("/nonexistent/x.dcrv", &bad, err, sizeof err), 0);
   EXPECT_NE(std::string(err).find("/nonexistent/x.dcrv"), std::string::npos) << err;
 }
