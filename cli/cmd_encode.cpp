@@ -16,6 +16,8 @@ Action add_encode(CLI::App& app) {
     double tolerance = 1e-3;
     bool json = false, no_connectivity = false;
     int threads = 0;
+    std::string model = "none";
+    uint32_t segment_frames = 8, curve_points = 64;
   };
   auto o = std::make_shared<Opts>();
   app.add_option("input", o->input, "Folder of frames (OBJ/PLY/OFF, sorted by name) or a scene file (.json)")
@@ -23,6 +25,17 @@ Action add_encode(CLI::App& app) {
   app.add_option("-o,--output", o->output, "Output .dcrv file")->required();
   app.add_option("--tolerance", o->tolerance, "Max error, fraction of the rest-pose bounding-box diagonal")
       ->check(CLI::Range(1e-7, 0.5))
+      ->capture_default_str();
+  app.add_option("--model", o->model,
+                 "Motion model beside the exact frames: none (in-betweens blend linearly), pde8 or pde32 "
+                 "(in-betweens follow the fitted PDE curves)")
+      ->check(CLI::IsMember({"none", "pde8", "pde32"}))
+      ->capture_default_str();
+  app.add_option("--segment-frames", o->segment_frames, "PDE model time segment length, frames")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")
+      ->check(CLI::Range(2, 1000000))
       ->capture_default_str();
   app.add_flag("--no-connectivity", o->no_connectivity, "Leave faces out of the file (the engine has the mesh)");
   app.add_option("--threads", o->threads, "Worker threads, 0 = all cores (output is the same for any count)")
@@ -49,6 +62,9 @@ Action add_encode(CLI::App& app) {
     eo.tolerance = o->tolerance;
     eo.connectivity = !o->no_connectivity;
     eo.threads = o->threads;
+    eo.model = o->model == "pde8" ? ModelChoice::Pde8 : o->model == "pde32" ? ModelChoice::Pde32 : ModelChoice::None;
+    eo.segment_frames = o->segment_frames;
+    eo.curve_points = o->curve_points;
     eo.progress = progress_bar("encode");
     std::vector<uint8_t> bytes;
     EncodeReport rep;
@@ -78,7 +94,10 @@ Action add_encode(CLI::App& app) {
                         {"rmse", rep.error.rmse},
                         {"kg_error_pct", rep.error.kg_error_pct},
                         {"bpvf", rep.bpvf},
-                        {"encode_seconds", rep.encode_seconds}};
+                        {"encode_seconds", rep.encode_seconds},
+                        {"model", o->model},
+                        {"model_bytes", rep.model_bytes},
+                        {"curve_fallback", rep.curve_fallback}};
     if (o->json) {
       std::printf("%s\n", j.dump().c_str());
     } else {

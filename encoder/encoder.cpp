@@ -7,6 +7,10 @@
 #include "codec/model.h"
 #include "codec/residual.h"
 #include "decoder/dcurve.hpp"
+#include "encoder/curves/extract.h"
+#include "encoder/curves/report.h"
+#include "encoder/rate/grid.h"
+#include "encoder/rate/motion_model.h"
 
 namespace dcurve {
 namespace {
@@ -16,16 +20,31 @@ bool fail(std::string* error, const std::string& msg) {
   return false;
 }
 
-// Every vertex its own one-point curve: the trivial partition, until curve extraction lands.
+// Every vertex its own one-point curve: always a valid partition, used when extraction
+// cannot handle the mesh (non-manifold input); the residual layer then predicts from faces.
 Curves singleton_curves(uint32_t V) {
   Curves c;
   c.vertices.resize(V);
   c.offsets.resize(V + 1);
   c.closed.assign(V, 0);
   c.u.assign(V, 0.f);
-  for (uint32_t v = 0; v < V; ++v) { c.vertices[v] = v; c.offsets[v] = v; }
+  for (uint32_t v = 0; v < V; ++v) c.vertices[v] = c.offsets[v] = v;
   c.offsets[V] = V;
   return c;
+}
+
+// Decodes `bytes` with the runtime decoder at every input frame time and measures it: the
+// only error figure the encoder reports.
+bool measure_decoded(const std::vector<uint8_t>& bytes, const Animation& anim, ErrorStats* stats,
+                     std::string* error) {
+  std::string derr;
+  auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &derr);
+  if (!dec) return fail(error, "internal error: written file does not decode: " + derr);
+  const uint32_t F = uint32_t(anim.frames.size());
+  std::vector<std::vector<float>> decoded(F, std::vector<float>(size_t(anim.vertex_count) * 3));
+  for (uint32_t f = 0; f < F; ++f) dec->evaluate(F > 1 ? double(f) / (F - 1) : 0.0, decoded[f].data());
+  *stats = measure_error(anim, decoded);
+  return true;
 }
 
 }  // namespace
@@ -33,68 +52,72 @@ Curves singleton_curves(uint32_t V) {
 bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vector<uint8_t>* out,
                       EncodeReport* report, std::string* error) {
   auto start = std::chrono::steady_clock::now();
+  auto progress = [&](double f) { if (opt.progress) opt.progress(f); };
   if (!validate_animation(anim, error)) return false;
   if (!(opt.tolerance > 0 && opt.tolerance <= 0.5)) return fail(error, "tolerance must be in (0, 0.5]");
+  if (opt.segment_frames == 0) return fail(error, "segment length must be at least one frame");
+  if (opt.curve_points < 2) return fail(error, "target curve length must be at least 2 points");
   const double L = bbox_diagonal(anim.frames[0]);
   if (!(L > 0)) return fail(error, "rest pose has a zero bounding box (all vertices coincide)");
 
   const uint32_t V = anim.vertex_count, F = uint32_t(anim.frames.size());
+  EncodeReport rep;
   Model m;
   m.meta = {V, F, anim.frame_rate, opt.tolerance, L, ""};
   m.faces = anim.faces;
-  m.curves = singleton_curves(V);
 
-  // A cubic cell of side s has half-diagonal s*sqrt(3)/2: this step keeps every rounded
-  // position within tolerance * L; the small margin absorbs float32 output rounding.
-  ResidualLayer& r = m.residual;
-  r.step = 2.0 * opt.tolerance * L / std::sqrt(3.0) * (1.0 - 1e-3);
-  for (int a = 0; a < 3; ++a) {
-    double lo = anim.frames[0][a];
-    for (const auto& fr : anim.frames)
-      for (size_t i = a; i < fr.size(); i += 3) lo = std::min(lo, double(fr[i]));
-    r.origin[a] = lo;
+  CurveOptions co;
+  co.target_points = opt.curve_points;
+  std::string curve_error;
+  if (!extract_curves(anim.frames[0], V, anim.faces, co, &m.curves, &curve_error)) {
+    m.curves = singleton_curves(V);
+    rep.curve_fallback = curve_error;
   }
-  std::vector<int32_t> q(size_t(F) * V * 3);
-  for (uint32_t f = 0; f < F; ++f)
-    for (size_t i = 0; i < size_t(V) * 3; ++i) {
-      double g = std::nearbyint((double(anim.frames[f][i]) - r.origin[i % 3]) / r.step);
-      if (g > INT32_MAX) return fail(error, "tolerance too small for the motion range (grid overflow)");
-      q[f * size_t(V) * 3 + i] = int32_t(g);
-    }
-  r.payload = encode_residuals(m, q);
-  if (opt.progress) opt.progress(0.5);
+  progress(0.1);
+
+  if (opt.model != ModelChoice::None) {
+    MotionModelOptions mo;
+    mo.basis = opt.model == ModelChoice::Pde32 ? Basis::Pde32 : Basis::Pde8;
+    mo.segment_frames = opt.segment_frames;
+    mo.threads = opt.threads;
+    if (!fit_motion_model(anim, m.curves, anim.frames[0], mo, &m.segments, error)) return false;
+    rep.model_bytes = motion_model_raw_bytes(m.segments);
+  }
+  progress(0.6);
+
+  m.residual = make_grid(anim, opt.tolerance * L);
+  std::vector<int32_t> q;
+  if (!quantize_to_grid(anim, m.residual, &q, error)) return false;
+  m.residual.payload = encode_residuals(m, q);
+  progress(0.8);
 
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
   *out = write_container(m, wo);
 
-  // Closed loop: decode what was written with the runtime decoder and measure.
-  std::string derr;
-  auto dec = Decoder::open_memory(out->data(), out->size(), &derr);
-  if (!dec) return fail(error, "internal error: written file does not decode: " + derr);
-  std::vector<std::vector<float>> decoded(F, std::vector<float>(size_t(V) * 3));
-  for (uint32_t f = 0; f < F; ++f) dec->evaluate_frame(f, decoded[f].data());
-  EncodeReport rep;
-  rep.error = measure_error(anim, decoded);
+  if (!measure_decoded(*out, anim, &rep.error, error)) return false;
   if (rep.error.max_error > opt.tolerance)
     return fail(error, "internal error: decoded max error " + std::to_string(rep.error.max_error) +
                            " exceeds the tolerance");
-  std::vector<SectionInfo> sections;
-  Model check;
-  read_container(out->data(), out->size(), &check, nullptr, &sections);
   rep.bytes = out->size();
-  for (const auto& s : sections)
-    if (s.tag == "FACE") rep.connectivity_bytes += s.stored_bytes + 28;
+  if (opt.connectivity) {
+    // What the faces cost is whatever the file without them saves.
+    wo.connectivity = false;
+    rep.connectivity_bytes = rep.bytes - write_container(m, wo).size();
+  }
   rep.motion_bytes = rep.bytes - rep.connectivity_bytes;
   rep.vertices = V;
   rep.frames = F;
-  rep.curves = m.curves.curve_count();
   rep.segments = uint32_t(m.segments.size());
   rep.bpvf = 8.0 * double(rep.bytes) / (double(V) * F);
-  rep.mean_points_per_curve = rep.median_points_per_curve = 1;
-  rep.short_curve_vertex_fraction = 1;
+  CurveReport cr = curve_report(m.curves, anim.frames[0]);
+  rep.curves = cr.curves;
+  rep.mean_points_per_curve = cr.mean_points_per_curve;
+  rep.median_points_per_curve = cr.median_points_per_curve;
+  rep.short_curve_vertex_fraction = cr.short_curve_vertex_fraction;
+  rep.mean_turning_angle_deg = cr.mean_turning_angle_deg;
   rep.encode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (opt.progress) opt.progress(1.0);
+  progress(1.0);
   if (report) *report = rep;
   return true;
 }

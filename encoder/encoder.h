@@ -10,8 +10,18 @@
 
 namespace dcurve {
 
+// The motion model stored beside the residual layer.
+enum class ModelChoice {
+  None,  // no PDE model: in-betweens are linear blends of the exact frames
+  Pde8,  // 2022 paper's 8-term solutions per curve, axis and segment
+  Pde32, // 2024 paper's 32-term solutions
+};
+
 struct EncodeOptions {
   double tolerance = 1e-3;    // max error, fraction of the rest-pose bounding-box diagonal, in (0, 0.5]
+  ModelChoice model = ModelChoice::None;
+  uint32_t segment_frames = 8;  // PDE model segment length in frames, >= 1
+  uint32_t curve_points = 64;   // target vertices per curve, >= 2
   bool connectivity = true;   // store faces in the file
   int threads = 0;            // 0: all hardware threads; output bytes never depend on it
   std::function<void(double)> progress;  // called with the fraction done in [0, 1]; may be empty
@@ -28,6 +38,8 @@ struct EncodeReport {
   // Curve extraction report (issue 5 keys).
   double mean_points_per_curve = 0, median_points_per_curve = 0;
   double short_curve_vertex_fraction = 0, mean_turning_angle_deg = 0;
+  std::string curve_fallback;       // why curve extraction fell back to one-vertex curves, or empty
+  uint64_t model_bytes = 0;         // PDE model, before entropy coding (0 without a model)
 };
 
 // Encodes `anim` into `out`. The returned error stats come from decoding `out` with the

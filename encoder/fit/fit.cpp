@@ -1,0 +1,162 @@
+#include "encoder/fit/fit.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "codec/basis.h"
+#include "encoder/fit/param_search.h"
+#include "encoder/fit/projection.h"
+
+namespace dcurve {
+namespace {
+
+bool fail(std::string* error, const std::string& message) {
+  if (error) *error = message;
+  return false;
+}
+
+bool check_input(const CurveFrames& c, const FitOptions& o, std::string* error) {
+  const size_t P = c.points(), F = c.frames();
+  if (o.basis != Basis::Pde8 && o.basis != Basis::Pde32) return fail(error, "fit: basis must be Pde8 or Pde32");
+  if (o.basis == Basis::Pde8 && o.fixed_case > 3) return fail(error, "fit: Pde8 basis case must be 0..3");
+  if (o.basis == Basis::Pde32 && o.fixed_case > 0) return fail(error, "fit: Pde32 has only basis case 0");
+  if (o.max_time_param < 0 || o.max_time_param > kBasisMaxParam || o.max_space_param < 0 ||
+      o.max_space_param > kBasisMaxParam || o.fixed_time_param > kBasisMaxParam ||
+      o.fixed_space_param > kBasisMaxParam)
+    return fail(error, "fit: parameters must lie in [0, 1000]");
+  if (P == 0 || F == 0) return fail(error, "fit: a curve needs at least one point and one frame");
+  if (c.xyz.size() != P * F * 3) return fail(error, "fit: xyz must hold points * frames * 3 values");
+  if (o.mode == FitMode::Displacement && c.rest.size() != P * 3)
+    return fail(error, "fit: displacement mode needs points * 3 rest positions");
+  for (size_t f = 0; f < F; ++f) {
+    if (!(c.tau[f] >= 0 && c.tau[f] <= 1)) return fail(error, "fit: tau must lie in [0, 1]");
+    if (f > 0 && !(c.tau[f] > c.tau[f - 1])) return fail(error, "fit: tau must be strictly increasing");
+  }
+  for (double u : c.u)
+    if (!(u >= 0 && u <= 1)) return fail(error, "fit: u must lie in [0, 1]");
+  for (double v : c.xyz)
+    if (!std::isfinite(v)) return fail(error, "fit: non-finite position");
+  for (double v : c.rest)
+    if (!std::isfinite(v)) return fail(error, "fit: non-finite rest position");
+  return true;
+}
+
+// The stored motions evaluated through codec/basis on the sample grid, rest and rigid restored.
+void evaluate_on_grid(const CurveFit& fit, const CurveFrames& c, std::vector<double>* out) {
+  const size_t P = c.points(), F = c.frames();
+  out->resize(P * F * 3);
+  for (size_t f = 0; f < F; ++f) evaluate_curve_fit(fit, c.u, c.rest, c.tau[f], out->data() + f * P * 3);
+}
+
+}  // namespace
+
+void evaluate_curve_fit(const CurveFit& fit, const std::vector<double>& u, const std::vector<double>& rest,
+                        double tau, double* xyz) {
+  const size_t P = u.size();
+  for (int a = 0; a < 3; ++a) {
+    const CurveMotion& m = fit.axis[a].motion;
+    const int nt = basis_time_count(m.basis), ns = basis_space_count(m.basis);
+    double t[4] = {0, 0, 0, 0}, s[8];
+    if (nt > 0) basis_time(m.basis, m.basis_case, m.time_param, tau, t);
+    double row[8] = {0, 0, 0, 0, 0, 0, 0, 0};  // sum_i coeff(i, j) T_i(tau)
+    if (m.coeffs.size() == size_t(nt * ns))
+      for (int i = 0; i < nt; ++i)
+        for (int j = 0; j < ns; ++j) row[j] += double(m.coeffs[size_t(i * ns + j)]) * t[i];
+    for (size_t p = 0; p < P; ++p) {
+      double w = 0;
+      if (ns > 0) {
+        basis_space(m.basis, m.basis_case, m.space_param, u[p], s);
+        for (int j = 0; j < ns; ++j) w += row[j] * s[j];
+      }
+      if (fit.mode == FitMode::Displacement) w += rest[p * 3 + size_t(a)];
+      xyz[p * 3 + size_t(a)] = w;
+    }
+  }
+  apply_rigid(fit.rigid, tau, P, xyz);
+}
+
+bool fit_curve(const CurveFrames& c, const FitOptions& o, CurveFit* fit, std::string* error) {
+  if (!check_input(c, o, error)) return false;
+  const size_t P = c.points(), F = c.frames();
+  *fit = CurveFit();
+  fit->mode = o.mode;
+
+  std::vector<double> local;
+  const std::vector<double>* positions = &c.xyz;
+  if (o.remove_rigid) {
+    remove_rigid_motion(c.xyz, c.tau, P, &fit->rigid, &local);
+    positions = &local;
+  }
+  Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(c.u.data(), Eigen::Index(P));
+  Eigen::VectorXd tau = Eigen::Map<const Eigen::VectorXd>(c.tau.data(), Eigen::Index(F));
+  std::array<Eigen::MatrixXd, 3> w;
+  for (int a = 0; a < 3; ++a) {
+    w[size_t(a)].resize(Eigen::Index(P), Eigen::Index(F));
+    for (size_t f = 0; f < F; ++f)
+      for (size_t p = 0; p < P; ++p) {
+        double v = (*positions)[(f * P + p) * 3 + size_t(a)];
+        if (o.mode == FitMode::Displacement) v -= c.rest[p * 3 + size_t(a)];
+        w[size_t(a)](Eigen::Index(p), Eigen::Index(f)) = v;
+      }
+  }
+
+  std::array<ParamChoice, 3> choice = search_parameters(w, u, tau, o);
+  for (int a = 0; a < 3; ++a) {
+    AxisFit& ax = fit->axis[a];
+    CurveMotion& m = ax.motion;
+    m.basis = o.basis;
+    m.basis_case = uint8_t(choice[size_t(a)].basis_case);
+    m.time_param = float(choice[size_t(a)].time_param);
+    m.space_param = float(choice[size_t(a)].space_param);
+    // Solve again at the parameters the file will hold.
+    ScaledRange space, time;
+    space.compute(space_design(o.basis, m.basis_case, m.space_param, u), true);
+    time.compute(time_design(o.basis, m.basis_case, m.time_param, tau), true);
+    Eigen::VectorXd coeffs = solve_coefficients(space, time, w[size_t(a)]);
+    ax.coeffs.assign(coeffs.data(), coeffs.data() + coeffs.size());
+    m.coeffs.resize(ax.coeffs.size());
+    for (size_t k = 0; k < ax.coeffs.size(); ++k) m.coeffs[k] = float(ax.coeffs[k]);
+    ax.residual_rms = std::sqrt(projection_residual(space, time, w[size_t(a)]).squaredNorm() / double(P * F));
+  }
+
+  std::vector<double> fitted;
+  evaluate_on_grid(*fit, c, &fitted);
+  double sum2 = 0, worst = 0;
+  for (size_t k = 0; k < P * F; ++k) {
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      double d = fitted[k * 3 + size_t(a)] - c.xyz[k * 3 + size_t(a)];
+      d2 += d * d;
+    }
+    sum2 += d2;
+    worst = std::max(worst, d2);
+  }
+  fit->rms_error = std::sqrt(sum2 / double(P * F));
+  fit->max_error = std::sqrt(worst);
+  return true;
+}
+
+bool fit_curves(const std::vector<CurveFrames>& curves, const FitOptions& options, int threads,
+                std::vector<CurveFit>* fits, std::string* error) {
+  fits->assign(curves.size(), CurveFit());
+  std::vector<std::string> errors(curves.size());
+  std::vector<char> ok(curves.size(), 0);
+  std::atomic<size_t> next{0};
+  auto worker = [&]() {
+    for (size_t i = next++; i < curves.size(); i = next++)
+      ok[i] = fit_curve(curves[i], options, &(*fits)[i], &errors[i]) ? 1 : 0;
+  };
+  int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  n = int(std::min<size_t>(size_t(n), std::max<size_t>(curves.size(), 1)));
+  std::vector<std::thread> pool;
+  for (int k = 1; k < n; ++k) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  for (size_t i = 0; i < curves.size(); ++i)
+    if (!ok[i]) return fail(error, "curve " + std::to_string(i) + ": " + errors[i]);
+  return true;
+}
+
+}  // namespace dcurve

@@ -1,0 +1,28 @@
+// The nonlinear half of variable projection: choose the basis case and (time_param,
+// space_param) of each axis by minimizing the projected residual |W - P_U W P_T|.
+#pragma once
+#include <Eigen/Dense>
+#include <array>
+
+#include "encoder/fit/fit.h"
+
+namespace dcurve {
+
+struct ParamChoice {
+  int basis_case = 0;
+  double time_param = 0;
+  double space_param = 0;
+  double residual2 = 0;  // squared residual norm at the choice, model units^2
+};
+
+// One choice per axis for the three points x frames matrices w[a]. Coarse grid over every
+// allowed case (the three axes share the basis evaluations), then Levenberg-Marquardt on
+// the free parameters of the options.refined_cases best cases of each axis. Deterministic.
+std::array<ParamChoice, 3> search_parameters(const std::array<Eigen::MatrixXd, 3>& w, const Eigen::VectorXd& u,
+                                             const Eigen::VectorXd& tau, const FitOptions& options);
+
+// Squared projected residual of one axis at one choice (the quantity searched).
+double projected_residual2(const Eigen::MatrixXd& w, const Eigen::VectorXd& u, const Eigen::VectorXd& tau,
+                           Basis basis, int basis_case, double time_param, double space_param);
+
+}  // namespace dcurve

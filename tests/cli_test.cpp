@@ -1,0 +1,82 @@
+// The CLI contract: --help everywhere, exit 2 on bad usage, exit 1 with a message naming the
+// file on bad input, and no partial output file after a failure.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "test_util.h"
+
+namespace dcurve::test {
+namespace {
+
+TEST(Cli, HelpWorksForEverySubcommand) {
+  EXPECT_EQ(run_cli("--help").exit_code, 0);
+  for (const char* sub : {"simulate", "encode", "decode", "info", "bench"}) {
+    CommandResult r = run_cli(std::string(sub) + " --help");
+    EXPECT_EQ(r.exit_code, 0) << sub;
+    EXPECT_NE(r.output.find("Usage"), std::string::npos) << sub;
+  }
+}
+
+TEST(Cli, BadUsageExitsTwo) {
+  EXPECT_EQ(run_cli("").exit_code, 2);
+  EXPECT_EQ(run_cli("frobnicate").exit_code, 2);
+  EXPECT_EQ(run_cli("encode").exit_code, 2);                                // missing input
+  EXPECT_EQ(run_cli("encode x -o y --tolerance 7").exit_code, 2);          // out of range
+  EXPECT_EQ(run_cli("decode a.dcrv -o d --frames 3 --t 0.5").exit_code, 2);  // exclusive options
+}
+
+TEST(Cli, MissingInputExitsOneAndNamesTheFile) {
+  TempDir dir;
+  CommandResult r = run_cli("encode /nonexistent/frames -o " + dir / "out.dcrv");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("/nonexistent/frames"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.dcrv"));
+}
+
+TEST(Cli, MismatchedFramesAreRejectedWithoutPartialOutput) {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "frames");
+  std::ofstream(dir / "frames/a.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "frames/b.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+  CommandResult r = run_cli("encode " + dir / "frames" + " -o " + dir / "out.dcrv");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("b.obj"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.dcrv"));
+  for (const auto& e : std::filesystem::directory_iterator(dir.path))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST(Cli, CorruptFileIsRejectedByDecodeAndInfo) {
+  TempDir dir;
+  std::ofstream(dir / "bad.dcrv") << "DCRV this is not a real file";
+  for (const char* sub : {"info", "decode"}) {
+    CommandResult r = run_cli(std::string(sub) + " " + dir / "bad.dcrv" + (std::string(sub) == "decode" ? " -o " + dir / "out" : ""));
+    EXPECT_EQ(r.exit_code, 1) << sub;
+    EXPECT_NE(r.output.find("bad.dcrv"), std::string::npos) << r.output;
+  }
+}
+
+TEST(Cli, EncodeDecodeInfoEndToEnd) {
+  if (!have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found";
+  TempDir dir;
+  Animation anim = read_corpus_frames("cloth-sphere", 6, 20);
+  std::string err;
+  ASSERT_TRUE(write_frame_folder(dir / "in", anim, "obj", &err)) << err;
+  CommandResult e = run_cli("encode " + dir / "in" + " -o " + dir / "c.dcrv --tolerance 1e-3 --json");
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  EXPECT_NE(e.output.find("\"max_error\""), std::string::npos);
+  CommandResult i = run_cli("info " + dir / "c.dcrv --json");
+  ASSERT_EQ(i.exit_code, 0) << i.output;
+  EXPECT_NE(i.output.find("\"vertices\":2500"), std::string::npos) << i.output;
+  ASSERT_EQ(run_cli("decode " + dir / "c.dcrv -o " + dir / "out").exit_code, 0);
+  Animation back;
+  ASSERT_TRUE(read_frame_folder(dir / "out", &back, &err)) << err;
+  ASSERT_EQ(back.frames.size(), anim.frames.size());
+  EXPECT_EQ(back.faces, anim.faces);
+  ASSERT_EQ(run_cli("decode " + dir / "c.dcrv -o " + dir / "one --t 0.5 --format ply").exit_code, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "one/frame_00000.ply"));
+}
+
+}  // namespace
+}  // namespace dcurve::test

@@ -1,0 +1,153 @@
+// The encoder's promise, checked by decoding the written bytes: every vertex of every input
+// frame within tolerance * L, files shrink as the tolerance loosens, and the in-between
+// evaluation has no jumps larger than the tolerance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "decoder/dcurve.hpp"
+#include "encoder/encoder.h"
+#include "test_util.h"
+
+namespace dcurve::test {
+namespace {
+
+std::vector<std::vector<float>> decode_frames(const std::vector<uint8_t>& bytes, uint32_t frames) {
+  std::string err;
+  auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+  EXPECT_TRUE(dec) << err;
+  std::vector<std::vector<float>> out;
+  for (uint32_t f = 0; dec && f < frames; ++f) {
+    out.emplace_back(3 * size_t(dec->vertex_count()));
+    dec->evaluate(frames > 1 ? double(f) / (frames - 1) : 0.0, out.back().data());
+  }
+  return out;
+}
+
+class Guarantee : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Guarantee, EveryFrameWithinToleranceAndSizeMonotone) {
+  if (!have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found";
+  Animation anim = read_corpus_frames(GetParam(), 5, 3);
+  uint64_t previous = 0;
+  for (double tol : {1e-4, 1e-3, 1e-2}) {
+    EncodeOptions opt;
+    opt.tolerance = tol;
+    std::vector<uint8_t> bytes;
+    EncodeReport rep;
+    std::string err;
+    ASSERT_TRUE(encode_animation(anim, opt, &bytes, &rep, &err)) << err;
+    // Independent of the encoder's own report: decode through evaluate(t) at frame times.
+    ErrorStats e = measure_error(anim, decode_frames(bytes, uint32_t(anim.frames.size())));
+    for (size_t f = 0; f < e.max_error_per_frame.size(); ++f)
+      EXPECT_LE(e.max_error_per_frame[f], tol) << GetParam() << " frame " << f << " tol " << tol;
+    EXPECT_NEAR(e.max_error, rep.error.max_error, 1e-12);
+    if (previous) {
+      EXPECT_LT(bytes.size(), previous) << "tolerance " << tol;
+    }
+    previous = bytes.size();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(CorpusExt, Guarantee,
+                         ::testing::Values("horse-gallop", "chicken-crossing", "elastic-cow", "cloth-sphere", "crane"));
+
+// With a PDE model the frames are still exact to the grid, and between frames the output
+// follows the model: it must stay near the input's own in-between motion, not swing away.
+TEST(Guarantee, PdeModelKeepsTheGuaranteeAndSmoothInBetweens) {
+  if (!have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found";
+  Animation all = read_corpus_frames("horse-gallop", 9);
+  Animation even = all;
+  even.frames.clear();
+  for (size_t f = 0; f < all.frames.size(); f += 2) even.frames.push_back(all.frames[f]);
+  const double L = bbox_diagonal(all.frames[0]);
+  for (ModelChoice model : {ModelChoice::Pde8, ModelChoice::Pde32}) {
+    EncodeOptions opt;
+    opt.model = model;
+    opt.segment_frames = 2;
+    std::vector<uint8_t> bytes;
+    EncodeReport rep;
+    std::string err;
+    ASSERT_TRUE(encode_animation(even, opt, &bytes, &rep, &err)) << err;
+    EXPECT_LE(rep.error.max_error, opt.tolerance);
+    EXPECT_EQ(rep.segments, 2u);
+    EXPECT_GT(rep.model_bytes, 0u);
+    auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+    ASSERT_TRUE(dec) << err;
+    // Odd input frames were never seen by the encoder; the largest frame-to-frame step of
+    // the input bounds a plausible in-between's error.
+    std::vector<float> xyz(3 * size_t(all.vertex_count));
+    for (size_t f = 1; f < all.frames.size(); f += 2) {
+      dec->evaluate(double(f) / double(all.frames.size() - 1), xyz.data());
+      double worst = 0, step = 0;
+      for (size_t i = 0; i < xyz.size(); i += 3) {
+        double d2 = 0, s2 = 0;
+        for (int a = 0; a < 3; ++a) {
+          d2 += std::pow(double(xyz[i + a]) - all.frames[f][i + a], 2);
+          s2 += std::pow(double(all.frames[f + 1][i + a]) - all.frames[f - 1][i + a], 2);
+        }
+        worst = std::max(worst, std::sqrt(d2));
+        step = std::max(step, std::sqrt(s2));
+      }
+      EXPECT_LE(worst, step + opt.tolerance * L) << "frame " << f;
+    }
+  }
+}
+
+TEST(Guarantee, NoJumpsBetweenFrames) {
+  if (!have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found";
+  Animation anim = read_corpus_frames("cloth-sphere", 4, 10);
+  const double tol = 1e-3;
+  EncodeOptions opt;
+  opt.tolerance = tol;
+  std::vector<uint8_t> bytes;
+  std::string err;
+  ASSERT_TRUE(encode_animation(anim, opt, &bytes, nullptr, &err)) << err;
+  auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+  ASSERT_TRUE(dec) << err;
+  const double L = bbox_diagonal(anim.frames[0]);
+  // The largest input step bounds how far x(t) may move between two neighbouring samples.
+  double max_step = 0;
+  for (size_t f = 1; f < anim.frames.size(); ++f)
+    for (size_t i = 0; i < anim.frames[f].size(); i += 3) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += std::pow(anim.frames[f][i + a] - anim.frames[f - 1][i + a], 2);
+      max_step = std::max(max_step, std::sqrt(d2));
+    }
+  const int samples = 3000;
+  const double allowed = max_step * 3.0 / samples * (anim.frames.size() - 1) + tol * L;
+  std::vector<float> a(3 * size_t(anim.vertex_count)), b(a.size());
+  dec->evaluate(0.0, a.data());
+  for (int s = 1; s <= samples; ++s) {
+    dec->evaluate(double(s) / samples, b.data());
+    double worst = 0;
+    for (size_t i = 0; i < a.size(); i += 3) {
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += std::pow(double(b[i + k]) - a[i + k], 2);
+      worst = std::max(worst, std::sqrt(d2));
+    }
+    ASSERT_LE(worst, allowed) << "jump at t=" << double(s) / samples;
+    a.swap(b);
+  }
+}
+
+TEST(Guarantee, BadAnimationsAreRejected) {
+  Animation anim;
+  std::vector<uint8_t> bytes;
+  std::string err;
+  EXPECT_FALSE(encode_animation(anim, {}, &bytes, nullptr, &err));
+  anim.vertex_count = 3;
+  anim.faces = {0, 1, 2};
+  anim.frames = {{0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 0, 0, 1, 0, 0, 0, NAN, 0}};
+  EXPECT_FALSE(encode_animation(anim, {}, &bytes, nullptr, &err));
+  EXPECT_NE(err.find("frame 1"), std::string::npos) << err;
+  anim.frames[1][7] = 1;
+  anim.faces = {0, 1, 5};
+  EXPECT_FALSE(encode_animation(anim, {}, &bytes, nullptr, &err));
+  anim.faces = {0, 1, 2};
+  anim.frames = {{1, 1, 1, 1, 1, 1, 1, 1, 1}};
+  EXPECT_FALSE(encode_animation(anim, {}, &bytes, nullptr, &err));  // zero bounding box
+}
+
+}  // namespace
+}  // namespace dcurve::test

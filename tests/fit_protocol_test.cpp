@@ -1,0 +1,137 @@
+// bench/paper_protocols: the papers' protocols on synthetic sheets with known properties, bad
+// input refused, and (when corpus-ext is present) the figures on cloth-sphere rows.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include "bench/paper_protocols.h"
+#include "bench/paper_splines.h"
+
+namespace dcurve {
+namespace {
+
+// rows x columns sheet; position of (row, column) at time t from `motion`.
+template <class Fn>
+Animation make_sheet(uint32_t rows, uint32_t columns, uint32_t frames, Fn motion) {
+  Animation anim;
+  anim.vertex_count = rows * columns;
+  for (uint32_t r = 0; r + 1 < rows; ++r)
+    for (uint32_t c = 0; c + 1 < columns; ++c) {
+      uint32_t v = r * columns + c;
+      anim.faces.insert(anim.faces.end(), {v, v + 1, v + columns, v + 1, v + columns + 1, v + columns});
+    }
+  for (uint32_t f = 0; f < frames; ++f) {
+    std::vector<float> xyz;
+    double t = double(f) / 10.0;
+    for (uint32_t r = 0; r < rows; ++r)
+      for (uint32_t c = 0; c < columns; ++c) {
+        double p[3];
+        motion(double(c) / (columns - 1), double(r) / (rows - 1), t, p);
+        for (double x : p) xyz.push_back(float(x));
+      }
+    anim.frames.push_back(xyz);
+  }
+  return anim;
+}
+
+TEST(PaperProtocols, RigidlyTurningSheetIsPredictedByThePdeFitNotByLinearSplines) {
+  // Rows are cubic in u and turn rigidly about their centroids' axis: the PDE fit with rigid
+  // removal and slerp reproduces the skipped frames; linear interpolation of splines cuts the arc.
+  Animation anim = make_sheet(6, 30, 11, [](double u, double v, double t, double* p) {
+    double x = u - 0.5, y = 0.2 * (u - 0.5) * (u - 0.5) * (u - 0.5), z = 0.3 * v;
+    double ang = 2.0 * t;
+    p[0] = std::cos(ang) * x - std::sin(ang) * y + 3;
+    p[1] = std::sin(ang) * x + std::cos(ang) * y + 1;
+    p[2] = z;
+  });
+  Curves curves;
+  std::string error;
+  ASSERT_TRUE(grid_row_curves(anim, 30, &curves, &error)) << error;
+  nlohmann::json j;
+  std::string table;
+  ASSERT_TRUE(run_paper_protocol("paper2024", anim, curves, &j, &table, &error)) << error;
+  EXPECT_EQ(j["protocol"], "paper2024");
+  EXPECT_EQ(j["curves"], 6);
+  EXPECT_LT(j["pde"]["max_EM"].get<double>(), 1e-4);
+  EXPECT_GT(j["bspline"]["max_EM"].get<double>(), 10 * j["pde"]["max_EM"].get<double>());
+  EXPECT_EQ(j["per_frame"].size(), 11u);
+  EXPECT_NE(table.find("ratios"), std::string::npos);
+}
+
+TEST(PaperProtocols, Paper2022PdeNeverLosesToTheCubicItContains) {
+  Animation anim = make_sheet(5, 40, 3, [](double u, double v, double t, double* p) {
+    p[0] = u + 2;
+    p[1] = 0.3 * std::sin(6 * u + 2 * t) + v + 1;
+    p[2] = 0.2 * std::cos(9 * u * (1 + v)) * (1 + t) + 1.5;
+  });
+  Curves curves;
+  std::string error;
+  ASSERT_TRUE(grid_row_curves(anim, 40, &curves, &error)) << error;
+  nlohmann::json j;
+  ASSERT_TRUE(run_paper_protocol("paper2022", anim, curves, &j, nullptr, &error)) << error;
+  EXPECT_EQ(j["frames"][0], 0);
+  EXPECT_EQ(j["frames"][1], 2);
+  double pde = j["pde"]["mean_EA"], bez = j["bezier"]["mean_EA"], bsp = j["bspline"]["mean_EA"];
+  EXPECT_GT(bez, 0);
+  EXPECT_LE(pde, bez * (1 + 1e-6));
+  EXPECT_NEAR(bez, bsp, 1e-9 * bez);  // a 4-point clamped cubic B-spline is the Bezier curve
+}
+
+TEST(PaperProtocols, BsplineWithManyControlPointsInterpolatesFewPoints) {
+  std::vector<double> u = {0, 0.2, 0.5, 0.7, 1.0}, xyz, fitted;
+  for (double x : u) xyz.insert(xyz.end(), {std::sin(5 * x), x * x, std::exp(x)});
+  fit_bspline(u, xyz.data(), 50, &fitted);
+  for (size_t k = 0; k < xyz.size(); ++k) EXPECT_NEAR(fitted[k], xyz[k], 1e-9);
+  fit_bspline(u, xyz.data(), 4, &fitted);
+  double worst = 0;
+  for (size_t k = 0; k < xyz.size(); ++k) worst = std::max(worst, std::fabs(fitted[k] - xyz[k]));
+  EXPECT_GT(worst, 1e-4);  // 4 control points cannot pass through 5 points of sin(5u)
+}
+
+TEST(PaperProtocols, RefusesBadInput) {
+  Animation anim = make_sheet(2, 10, 5, [](double u, double v, double, double* p) {
+    p[0] = u;
+    p[1] = v;
+    p[2] = 0;
+  });
+  Curves curves;
+  std::string error;
+  ASSERT_TRUE(grid_row_curves(anim, 10, &curves, &error)) << error;
+  nlohmann::json j;
+  EXPECT_FALSE(run_paper_protocol("paper2024", anim, curves, &j, nullptr, &error));  // 5 frames < 11
+  EXPECT_NE(error.find("11 frames"), std::string::npos);
+  EXPECT_FALSE(run_paper_protocol("paper1999", anim, curves, &j, nullptr, &error));
+  EXPECT_NE(error.find("unknown protocol"), std::string::npos);
+  curves.vertices[3] = 999;
+  EXPECT_FALSE(run_paper_protocol("paper2022", anim, curves, &j, nullptr, &error));
+  EXPECT_NE(error.find("out of range"), std::string::npos);
+  EXPECT_FALSE(grid_row_curves(anim, 7, &curves, &error));
+}
+
+TEST(PaperProtocols, ClothSphereRows) {
+  const std::string dir = std::string(DCURVE_CORPUS_EXT) + "/cloth-sphere";
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "corpus-ext absent";
+  Animation anim;
+  std::string error;
+  ASSERT_TRUE(read_frame_folder(dir, &anim, &error)) << error;
+  Curves curves;
+  ASSERT_TRUE(grid_row_curves(anim, 50, &curves, &error)) << error;
+  // Frames 0-10 are the free fall; frames 40-50 the draping over the sphere.
+  Animation drape = anim;
+  drape.frames.assign(anim.frames.begin() + 40, anim.frames.begin() + 51);
+  for (const Animation* a : {&anim, &drape})
+    for (const char* protocol : {"paper2024", "paper2022"}) {
+      if (a == &drape && std::string(protocol) == "paper2022") continue;
+      nlohmann::json j;
+      std::string table;
+      ASSERT_TRUE(run_paper_protocol(protocol, *a, curves, &j, &table, &error)) << error;
+      std::cout << (a == &drape ? "[cloth-sphere frames 40-50 as 0-10]\n" : "[cloth-sphere]\n") << table;
+      EXPECT_GT(j["pde"]["mean_EA"].get<double>(), 0.0);
+      EXPECT_TRUE(std::isfinite(j["pde"]["max_EM"].get<double>()));
+    }
+}
+
+}  // namespace
+}  // namespace dcurve

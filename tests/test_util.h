@@ -1,0 +1,64 @@
+// Helpers shared by the tests: running the CLI, reading a few frames of the real corpus.
+#pragma once
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "encoder/io/frames.h"
+
+namespace dcurve::test {
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs `args` with the dcurve CLI through the shell.
+inline CommandResult run_cli(const std::string& args) {
+  CommandResult r;
+  std::string cmd = std::string(DCURVE_CLI) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline std::string corpus_ext(const std::string& name) { return std::string(DCURVE_CORPUS_EXT) + "/" + name; }
+inline bool have_corpus_ext() { return std::filesystem::is_directory(DCURVE_CORPUS_EXT); }
+
+// Reads frames [0, count) of a corpus-ext sequence (frame_%05d.obj), or fails the test.
+inline Animation read_corpus_frames(const std::string& sequence, int count, int stride = 1) {
+  Animation anim;
+  for (int i = 0; i < count; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%05d.obj", i * stride);
+    std::vector<float> xyz;
+    std::vector<uint32_t> faces;
+    std::string err;
+    if (!read_mesh(corpus_ext(sequence) + name, &xyz, &faces, &err)) throw std::runtime_error(err);
+    anim.vertex_count = uint32_t(xyz.size() / 3);
+    anim.faces = faces;
+    anim.frames.push_back(std::move(xyz));
+  }
+  return anim;
+}
+
+// A scratch folder removed when the object dies.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir() {
+    char tmpl[] = "/tmp/dcurve_test_XXXXXX";
+    path = mkdtemp(tmpl);
+  }
+  ~TempDir() { std::filesystem::remove_all(path); }
+  std::string operator/(const std::string& name) const { return (path / name).string(); }
+};
+
+}  // namespace dcurve::test
