@@ -1,5 +1,6 @@
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "cli/commands.h"
@@ -7,6 +8,140 @@
 #include "encoder/io/files.h"
 
 namespace dcurve::cli {
+namespace {
+
+const char* mode_name(FitMode m) { return m == FitMode::Displacement ? "displacement" : "absolute"; }
+const char* layout_name(int l) { return l == 0 ? "exact" : l == 1 ? "traversal" : "none"; }
+
+// Counts of motions per basis (zero, pde8, pde32) and of Pde8 motions per case.
+struct BasisUse {
+  uint64_t by_basis[3] = {0, 0, 0};
+  uint64_t pde8_cases[4] = {0, 0, 0, 0};
+  void add(const CurveMotion& cm) {
+    by_basis[size_t(cm.basis)]++;
+    if (cm.basis == Basis::Pde8) pde8_cases[cm.basis_case & 3]++;
+  }
+  nlohmann::json json() const {
+    return {{"zero", by_basis[0]}, {"pde8", by_basis[1]}, {"pde32", by_basis[2]},
+            {"pde8_cases", {pde8_cases[0], pde8_cases[1], pde8_cases[2], pde8_cases[3]}}};
+  }
+};
+
+// Everything `dcurve info` reports, as one JSON object; the text output prints from it.
+nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& bytes, const Model& m,
+                        const std::vector<SectionInfo>& sections) {
+  ContainerHeader h;
+  peek_header(bytes.data(), bytes.size(), &h);
+  nlohmann::json js = nlohmann::json::array();
+  uint64_t connectivity = 0;
+  int face_layout = -1;
+  for (const auto& s : sections) {
+    js.push_back({{"tag", s.tag}, {"offset", s.offset}, {"required", s.required}, {"compressed", s.compressed},
+                  {"stored_bytes", s.stored_bytes}, {"raw_bytes", s.raw_bytes}});
+    if (s.tag == "FACE") {
+      connectivity += s.stored_bytes + kSectionHeaderBytes;
+      face_layout = s.face_layout;
+    }
+  }
+  std::vector<uint32_t> lengths;
+  uint64_t closed = 0;
+  for (uint32_t c = 0; c < m.curves.curve_count(); ++c) {
+    lengths.push_back(m.curves.offsets[c + 1] - m.curves.offsets[c]);
+    closed += m.curves.closed[c];
+  }
+  std::sort(lengths.begin(), lengths.end());
+  const uint64_t faces = m.faces.size() / 3;
+  const double vf = double(m.meta.vertex_count) * m.meta.frame_count;
+  BasisUse total;
+  nlohmann::json segs = nlohmann::json::array();
+  for (const Segment& s : m.segments) {
+    BasisUse use;
+    for (const CurveMotion& cm : s.motion) {
+      use.add(cm);
+      total.add(cm);
+    }
+    segs.push_back({{"first_frame", s.first_frame}, {"last_frame", s.last_frame}, {"mode", mode_name(s.mode)},
+                    {"basis_use", use.json()}});
+  }
+  const bool has_residual = m.residual.step > 0;
+  return {{"file", path},
+          {"bytes", bytes.size()},
+          {"version", std::to_string(h.version_major) + "." + std::to_string(h.version_minor)},
+          {"flags", h.flags},
+          {"vertices", m.meta.vertex_count},
+          {"frames", m.meta.frame_count},
+          {"frame_rate", m.meta.frame_rate},
+          {"units", m.meta.units},
+          {"tolerance", m.meta.tolerance},
+          {"rest_diagonal", m.meta.diag},
+          {"bpvf", 8.0 * double(bytes.size()) / vf},
+          {"motion_bytes", bytes.size() - connectivity},
+          {"connectivity_bytes", connectivity},
+          {"faces", faces},
+          {"face_layout", layout_name(face_layout)},
+          {"face_bytes_per_triangle", faces ? double(connectivity) / double(faces) : 0.0},
+          {"curves",
+           {{"count", lengths.size()},
+            {"closed", closed},
+            {"min_length", lengths.empty() ? 0 : lengths.front()},
+            {"median_length", lengths.empty() ? 0 : lengths[lengths.size() / 2]},
+            {"max_length", lengths.empty() ? 0 : lengths.back()},
+            {"mean_length", lengths.empty() ? 0.0 : double(m.meta.vertex_count) / double(lengths.size())}}},
+          {"segments", segs},
+          {"basis_use", total.json()},
+          {"residual",
+           {{"present", has_residual},
+            {"grid_step", m.residual.step},
+            {"origin", {m.residual.origin[0], m.residual.origin[1], m.residual.origin[2]}},
+            {"payload_bytes", m.residual.payload.size()}}},
+          {"sections", js}};
+}
+
+void print_text(const nlohmann::json& j) {
+  std::printf("%s: %llu bytes, .dcrv %s\n", j["file"].get<std::string>().c_str(),
+              (unsigned long long)j["bytes"].get<uint64_t>(), j["version"].get<std::string>().c_str());
+  std::printf("  %u vertices, %u frames at %.3g fps, units \"%s\"\n", j["vertices"].get<uint32_t>(),
+              j["frames"].get<uint32_t>(), j["frame_rate"].get<double>(), j["units"].get<std::string>().c_str());
+  std::printf("  tolerance %.3g of L = %.6g; %.3f bits per vertex per frame\n", j["tolerance"].get<double>(),
+              j["rest_diagonal"].get<double>(), j["bpvf"].get<double>());
+  std::printf("  motion %llu bytes, connectivity %llu bytes (%llu faces, %s layout, %.3f bytes/triangle)\n",
+              (unsigned long long)j["motion_bytes"].get<uint64_t>(),
+              (unsigned long long)j["connectivity_bytes"].get<uint64_t>(),
+              (unsigned long long)j["faces"].get<uint64_t>(), j["face_layout"].get<std::string>().c_str(),
+              j["face_bytes_per_triangle"].get<double>());
+  const auto& c = j["curves"];
+  std::printf("  %llu curves (%llu closed), length min %u / median %u / max %u, mean %.1f\n",
+              (unsigned long long)c["count"].get<uint64_t>(), (unsigned long long)c["closed"].get<uint64_t>(),
+              c["min_length"].get<uint32_t>(), c["median_length"].get<uint32_t>(), c["max_length"].get<uint32_t>(),
+              c["mean_length"].get<double>());
+  const auto& b = j["basis_use"];
+  std::printf("  %zu segments; motions: %llu zero, %llu pde8 (cases %llu/%llu/%llu/%llu), %llu pde32\n",
+              j["segments"].size(), (unsigned long long)b["zero"].get<uint64_t>(),
+              (unsigned long long)b["pde8"].get<uint64_t>(), (unsigned long long)b["pde8_cases"][0].get<uint64_t>(),
+              (unsigned long long)b["pde8_cases"][1].get<uint64_t>(),
+              (unsigned long long)b["pde8_cases"][2].get<uint64_t>(),
+              (unsigned long long)b["pde8_cases"][3].get<uint64_t>(), (unsigned long long)b["pde32"].get<uint64_t>());
+  for (const auto& s : j["segments"])
+    std::printf("    frames %5u..%-5u %-12s %llu zero, %llu pde8, %llu pde32\n", s["first_frame"].get<uint32_t>(),
+                s["last_frame"].get<uint32_t>(), s["mode"].get<std::string>().c_str(),
+                (unsigned long long)s["basis_use"]["zero"].get<uint64_t>(),
+                (unsigned long long)s["basis_use"]["pde8"].get<uint64_t>(),
+                (unsigned long long)s["basis_use"]["pde32"].get<uint64_t>());
+  const auto& r = j["residual"];
+  if (r["present"].get<bool>())
+    std::printf("  residual layer: grid step %.6g, %llu payload bytes\n", r["grid_step"].get<double>(),
+                (unsigned long long)r["payload_bytes"].get<uint64_t>());
+  else
+    std::printf("  no residual layer: positions come from the motion model alone\n");
+  std::printf("  sections:\n");
+  for (const auto& s : j["sections"])
+    std::printf("    %s at %8llu  %-8s %-4s %10llu bytes stored, %10llu raw\n", s["tag"].get<std::string>().c_str(),
+                (unsigned long long)s["offset"].get<uint64_t>(), s["required"].get<bool>() ? "required" : "optional",
+                s["compressed"].get<bool>() ? "zstd" : "", (unsigned long long)s["stored_bytes"].get<uint64_t>(),
+                (unsigned long long)s["raw_bytes"].get<uint64_t>());
+}
+
+}  // namespace
 
 Action add_info(CLI::App& app) {
   struct Opts {
@@ -29,39 +164,11 @@ Action add_info(CLI::App& app) {
       std::fprintf(stderr, "dcurve info: %s: %s\n", o->input.c_str(), err.c_str());
       return 1;
     }
-    size_t basis_use[3] = {0, 0, 0};
-    for (const Segment& s : m.segments)
-      for (const CurveMotion& cm : s.motion) basis_use[size_t(cm.basis)]++;
-    nlohmann::json js = nlohmann::json::array();
-    for (const auto& s : sections)
-      js.push_back({{"tag", s.tag}, {"required", s.required}, {"compressed", s.compressed},
-                    {"stored_bytes", s.stored_bytes}, {"raw_bytes", s.raw_bytes}});
-    nlohmann::json j = {{"file", o->input},
-                        {"bytes", bytes.size()},
-                        {"vertices", m.meta.vertex_count},
-                        {"frames", m.meta.frame_count},
-                        {"faces", m.faces.size() / 3},
-                        {"frame_rate", m.meta.frame_rate},
-                        {"tolerance", m.meta.tolerance},
-                        {"rest_diagonal", m.meta.diag},
-                        {"curves", m.curves.curve_count()},
-                        {"segments", m.segments.size()},
-                        {"basis_use", {{"zero", basis_use[0]}, {"pde8", basis_use[1]}, {"pde32", basis_use[2]}}},
-                        {"grid_step", m.residual.step},
-                        {"sections", js}};
-    if (o->json) {
+    nlohmann::json j = describe(o->input, bytes, m, sections);
+    if (o->json)
       std::printf("%s\n", j.dump().c_str());
-      return 0;
-    }
-    std::printf("%s: %zu bytes\n  %u vertices, %u frames at %.3g fps, %zu faces\n  tolerance %.3g of L = %.6g\n"
-                "  %u curves, %zu segments (motion models: %zu zero, %zu pde8, %zu pde32)\n  residual grid step %.6g\n",
-                o->input.c_str(), bytes.size(), m.meta.vertex_count, m.meta.frame_count, m.meta.frame_rate,
-                m.faces.size() / 3, m.meta.tolerance, m.meta.diag, m.curves.curve_count(), m.segments.size(),
-                basis_use[0], basis_use[1], basis_use[2], m.residual.step);
-    std::printf("  sections:\n");
-    for (const auto& s : sections)
-      std::printf("    %s %s%s %10llu bytes stored, %10llu raw\n", s.tag.c_str(), s.required ? "required" : "optional",
-                  s.compressed ? ", zstd" : "", (unsigned long long)s.stored_bytes, (unsigned long long)s.raw_bytes);
+    else
+      print_text(j);
     return 0;
   };
 }

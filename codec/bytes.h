@@ -9,6 +9,20 @@
 
 namespace dcurve {
 
+// Signed <-> unsigned for varints: 0, -1, 1, -2 ... -> 0, 1, 2, 3 ... (no shift of a
+// negative value, which C++17 leaves undefined).
+inline uint64_t zigzag_encode(int64_t v) { return (uint64_t(v) << 1) ^ (v < 0 ? ~uint64_t(0) : 0); }
+inline int64_t zigzag_decode(uint64_t z) { return int64_t(z >> 1) ^ -int64_t(z & 1); }
+
+// base + the zigzag-coded delta, for ids (base within [0, 2^32]). False, instead of signed
+// overflow, when a hostile delta is beyond any id range.
+inline bool add_zigzag_delta(int64_t base, uint64_t zigzagged, int64_t* out) {
+  const int64_t d = zigzag_decode(zigzagged), limit = int64_t(1) << 40;
+  if (d > limit || d < -limit) return false;
+  *out = base + d;
+  return true;
+}
+
 class ByteWriter {
  public:
   void u8(uint8_t v) { buf_.push_back(v); }

@@ -16,8 +16,7 @@ namespace dcurve {
 namespace {
 
 constexpr char kMagic[4] = {'D', 'C', 'R', 'V'};
-constexpr size_t kHeaderBytes = 20;
-constexpr size_t kSectionHeaderBytes = 28;
+constexpr size_t kHeaderBytes = kContainerHeaderBytes;
 constexpr uint16_t kSectionRequired = 1;
 constexpr uint16_t kSectionZstd = 2;
 constexpr uint16_t kSectionKnownFlags = kSectionRequired | kSectionZstd;
@@ -64,11 +63,13 @@ std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, boo
 }
 
 std::vector<uint8_t> face_bytes(const Model& m, const WriteOptions& options) {
-  using Layout = WriteOptions::FaceLayout;
-  if (options.face_layout == Layout::Traversal) return encode_faces(m.faces, FaceOrder::Traversal);
   std::vector<uint8_t> exact = encode_faces(m.faces, FaceOrder::Exact);
-  if (options.face_layout == Layout::Exact) return exact;
+  if (options.face_layout == WriteOptions::FaceLayout::Exact) return exact;
+  // Traversal may reorder triangles; other parts of the file (the residual coder's
+  // neighbours) were built on model.faces, so it is used only when it gives them back as is.
   std::vector<uint8_t> traversal = encode_faces(m.faces, FaceOrder::Traversal);
+  std::vector<uint32_t> back;
+  if (!decode_faces(traversal.data(), traversal.size(), &back, nullptr) || back != m.faces) return exact;
   bool unused;
   return stored_form(traversal, options.zstd_level, &unused).size() <
                  stored_form(exact, options.zstd_level, &unused).size()
@@ -115,8 +116,7 @@ std::vector<uint8_t> curve_bytes(const Model& m) {
   for (uint32_t i = 0; i < c.curve_count(); ++i) w.varint(uint64_t(c.offsets[i + 1] - c.offsets[i]) << 1 | c.closed[i]);
   int64_t prev = 0;
   for (uint32_t v : c.vertices) {
-    int64_t d = int64_t(v) - prev;
-    w.varint(uint64_t((d << 1) ^ (d >> 63)));
+    w.varint(zigzag_encode(int64_t(v) - prev));
     prev = v;
   }
   // u as 16-bit fixed point: 1/65535 of a curve is far below any tolerance the fit sees.
@@ -185,9 +185,7 @@ bool parse_curves(ByteReader& r, Model* m) {
   c.vertices.resize(size_t(total));
   int64_t prev = 0;
   for (auto& v : c.vertices) {
-    uint64_t z = r.varint();
-    prev += int64_t(z >> 1) ^ -int64_t(z & 1);
-    if (prev < 0 || prev > UINT32_MAX) return false;
+    if (!add_zigzag_delta(prev, r.varint(), &prev) || prev < 0 || prev > UINT32_MAX) return false;
     v = uint32_t(prev);
   }
   c.u.resize(size_t(total));
@@ -257,6 +255,17 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   return std::move(out.data());
 }
 
+bool peek_header(const uint8_t* data, size_t size, ContainerHeader* h) {
+  ByteReader r(data, size);
+  const uint8_t* magic = r.take(4);
+  if (!magic || std::memcmp(magic, kMagic, 4) != 0) return false;
+  h->version_major = r.u16();
+  h->version_minor = r.u16();
+  h->flags = r.u32();
+  h->section_count = r.u32();
+  return r.ok;
+}
+
 float quantize_curve_u(float u) { return u_from_fixed(u_to_fixed(u)); }
 
 bool read_container(const uint8_t* data, size_t size, Model* model, std::string* error,
@@ -296,7 +305,8 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     if (crc32c(p, size_t(stored), crc_head) != section_crc && kVerifyChecksums)
       return fail(error, "section " + name + " checksum mismatch");
     if (flags & ~kSectionKnownFlags) return fail(error, "section " + name + " has unknown flags");
-    if (infos) infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), stored, raw_size});
+    if (infos)
+      infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), header_at, stored, raw_size, -1});
 
     int known = -1;
     for (int k = 0; k < 5; ++k) if (order[k] == tag) known = k;
@@ -323,6 +333,7 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     bool ok = false;
     if (tag == kMeta) ok = parse_meta(s, model);
     else if (tag == kFaces) {
+      if (infos && !raw.empty()) infos->back().face_layout = raw[0];
       std::string why;
       if (!decode_faces(raw.data(), raw.size(), &model->faces, &why)) return fail(error, "section FACE: " + why);
       s.take(raw.size());

@@ -16,9 +16,10 @@ constexpr uint16_t kFormatVersionMinor = 0;
 
 struct WriteOptions {
   bool connectivity = true;  // store faces; engines that already hold the mesh can drop them
-  // Vertex ids are never renumbered. Smallest may reorder triangles and rotate their corners
-  // (windings kept) when that codes smaller; Exact keeps the list as given (codec/faces.h).
-  enum class FaceLayout { Smallest, Exact, Traversal };
+  // A reader always gets model.faces back exactly. Smallest uses the FACE Traversal layout
+  // when model.faces is already in traversal_order (codec/faces.h) and that codes smaller;
+  // Exact always uses the Exact layout.
+  enum class FaceLayout { Smallest, Exact };
   FaceLayout face_layout = FaceLayout::Smallest;
   int zstd_level = 19;       // 1..22
 };
@@ -28,9 +29,24 @@ struct SectionInfo {
   std::string tag;        // four ASCII characters
   bool required = false;
   bool compressed = false;
-  uint64_t stored_bytes = 0;  // bytes in the file (after the section header)
+  uint64_t offset = 0;        // file offset of the section header
+  uint64_t stored_bytes = 0;  // bytes in the file (after the 28-byte section header)
   uint64_t raw_bytes = 0;     // bytes after decompression
+  int face_layout = -1;       // FACE only: 0 exact, 1 traversal (codec/faces.h)
 };
+
+// The fixed 20-byte file header.
+struct ContainerHeader {
+  uint16_t version_major = 0, version_minor = 0;
+  uint32_t flags = 0;
+  uint32_t section_count = 0;
+};
+constexpr size_t kContainerHeaderBytes = 20;
+constexpr size_t kSectionHeaderBytes = 28;
+
+// Reads the header fields without checking anything else; false when size < 20 or the
+// magic is wrong. For tools that describe a file that read_container already accepted.
+bool peek_header(const uint8_t* data, size_t size, ContainerHeader* header);
 
 // Serializes `model` (which must pass validate_model). The RESI section is written only when
 // model.residual.step > 0; FACE only when options.connectivity and faces are present.

@@ -38,8 +38,6 @@ struct History {
   }
 };
 
-uint64_t zigzag(int64_t v) { return (uint64_t(v) << 1) ^ uint64_t(v >> 63); }
-int64_t unzigzag(uint64_t z) { return int64_t(z >> 1) ^ -int64_t(z & 1); }
 
 // Exact layout: one op byte per triangle against a short edge history, then explicit ids.
 std::vector<uint8_t> encode_exact(const std::vector<uint32_t>& faces) {
@@ -51,7 +49,7 @@ std::vector<uint8_t> encode_exact(const std::vector<uint32_t>& faces) {
   History h;
   int64_t ref = 0;  // the last explicitly coded id: explicit ids are coded as a delta to it
   auto explicit_id = [&](uint32_t v) {
-    data.varint(zigzag(int64_t(v) - ref));
+    data.varint(zigzag_encode(int64_t(v) - ref));
     ref = v;
   };
   for (size_t t = 0; t < T; ++t) {
@@ -100,8 +98,8 @@ bool decode_exact(ByteReader& r, std::vector<uint32_t>* faces, std::string* erro
   History h;
   int64_t ref = 0;
   auto explicit_id = [&](uint32_t* out) {
-    int64_t v = ref + unzigzag(r.varint());
-    if (!r.ok || v < 0 || v >= int64_t(UINT32_MAX)) return false;
+    int64_t v = 0;
+    if (!add_zigzag_delta(ref, r.varint(), &v) || !r.ok || v < 0 || v >= int64_t(UINT32_MAX)) return false;
     *out = uint32_t(v);
     ref = v;
     return true;
@@ -162,7 +160,7 @@ std::vector<uint8_t> encode_traversal(const std::vector<uint32_t>& faces) {
       done[next_start] = 1;
       for (int c = 0; c < 3; ++c) {
         uint32_t v = faces[3 * next_start + c];
-        ids.varint(zigzag(int64_t(v) - ref));
+        ids.varint(zigzag_encode(int64_t(v) - ref));
         ref = v;
         out.push_back(v);
       }
@@ -178,7 +176,7 @@ std::vector<uint8_t> encode_traversal(const std::vector<uint32_t>& faces) {
       done[t] = 1;
       const uint32_t x = faces[3 * t + (it->second % 3 + 2) % 3];
       symbols.push_back(1);
-      ids.varint(zigzag(int64_t(x) - int64_t(a)));
+      ids.varint(zigzag_encode(int64_t(x) - int64_t(a)));
       out.insert(out.end(), {b, a, x});
     }
     ++head;
@@ -208,8 +206,8 @@ bool decode_traversal(ByteReader& r, std::vector<uint32_t>* faces, std::string* 
   int64_t ref = 0;
   size_t head = 0, s = 0;
   auto id = [&](int64_t base, uint32_t* out) {
-    int64_t v = base + unzigzag(r.varint());
-    if (!r.ok || v < 0 || v >= int64_t(UINT32_MAX)) return false;
+    int64_t v = 0;
+    if (!add_zigzag_delta(base, r.varint(), &v) || !r.ok || v < 0 || v >= int64_t(UINT32_MAX)) return false;
     *out = uint32_t(v);
     return true;
   };
@@ -242,6 +240,13 @@ bool decode_traversal(ByteReader& r, std::vector<uint32_t>* faces, std::string* 
 
 std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder order) {
   return order == FaceOrder::Exact ? encode_exact(faces) : encode_traversal(faces);
+}
+
+std::vector<uint32_t> traversal_order(const std::vector<uint32_t>& faces) {
+  std::vector<uint8_t> bytes = encode_traversal(faces);
+  std::vector<uint32_t> out;
+  decode_faces(bytes.data(), bytes.size(), &out, nullptr);
+  return out;
 }
 
 bool decode_faces(const uint8_t* bytes, size_t size, std::vector<uint32_t>* faces, std::string* error) {

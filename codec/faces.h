@@ -19,6 +19,12 @@ enum class FaceOrder : uint8_t {
 // Codes `faces` (3 vertex ids per triangle, any values < 2^32 - 1) into bytes.
 std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder order = FaceOrder::Exact);
 
+// The triangle list a reader gets back from the Traversal layout: the same triangles and
+// windings, reordered and rotated. An encoder that wants the compact layout puts its faces in
+// this order BEFORE anything else depends on face order (the residual coder's neighbours),
+// since write_container only uses Traversal when it gives back model.faces unchanged.
+std::vector<uint32_t> traversal_order(const std::vector<uint32_t>& faces);
+
 // Reverses encode_faces. Returns false with a message when the bytes are malformed; never
 // reads outside [data, data + size) and allocates at most 12 bytes per input byte.
 bool decode_faces(const uint8_t* data, size_t size, std::vector<uint32_t>* faces, std::string* error);

@@ -1,6 +1,7 @@
 /* dcurve runtime decoder, C ABI. Thin wrapper over dcurve.hpp for engines and other languages.
  * Every function that can fail returns 0 on success and a non-zero code otherwise; the
- * message is copied into `error` (always NUL-terminated when error_size > 0). */
+ * message is copied into `error` (always NUL-terminated when error_size > 0). A NULL decoder
+ * is accepted everywhere: counts read 0, evaluation writes nothing. */
 #ifndef DCURVE_H
 #define DCURVE_H
 #include <stddef.h>
@@ -12,7 +13,8 @@ extern "C" {
 
 typedef struct dcurve_decoder dcurve_decoder;
 
-/* Opens a .dcrv held in memory; the caller may free `data` afterwards. */
+/* Opens a .dcrv held in memory; the caller may free `data` afterwards. Returns 1 with a
+ * message on malformed input (*out = NULL), 2 when `out` is NULL. */
 int dcurve_open_memory(const void* data, size_t size, dcurve_decoder** out, char* error, size_t error_size);
 /* Opens a .dcrv file by path. */
 int dcurve_open_file(const char* path, dcurve_decoder** out, char* error, size_t error_size);

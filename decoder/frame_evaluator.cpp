@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "codec/basis.h"
 
@@ -10,6 +11,13 @@ namespace {
 bool fail(std::string* error, const std::string& msg) {
   if (error) *error = msg;
   return false;
+}
+// double -> float, saturating to +-inf instead of the undefined conversion of an
+// out-of-range value (the finiteness checks after building then reject the file).
+float to_float(double v) {
+  if (v > double(std::numeric_limits<float>::max())) return std::numeric_limits<float>::infinity();
+  if (v < -double(std::numeric_limits<float>::max())) return -std::numeric_limits<float>::infinity();
+  return float(v);
 }
 constexpr int kMaxTimeTerms = 4;
 constexpr int kMaxSpaceTerms = 8;
@@ -86,7 +94,7 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
           for (int it = 0; it < tc; ++it) {
             double acc = 0;
             for (int is = 0; is < sc; ++is) acc += double(cm.coeffs[size_t(it) * sc + is]) * space[is];
-            weights_[weights_at++] = float(acc);
+            weights_[weights_at++] = to_float(acc);
           }
         }
       motions_.push_back(cmod);
@@ -98,7 +106,7 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
       for (uint32_t f = span.first; f <= span.last; ++f) {
         float* d = corrections_.data() + corrections_at;
         const int32_t* qf = q.data() + size_t(f) * n;
-        for (size_t i = 0; i < n; ++i) d[i] = float(m.residual.origin[i % 3] + m.residual.step * double(qf[i]));
+        for (size_t i = 0; i < n; ++i) d[i] = to_float(m.residual.origin[i % 3] + m.residual.step * double(qf[i]));
         apply_model(span, len ? double(f - span.first) / len : 0.0, -1.f, d);
         corrections_at += n;
       }
@@ -113,6 +121,14 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
 }
 
 namespace {
+struct TimeKey {
+  Basis basis = Basis::Zero;
+  uint8_t basis_case = 0;
+  double param = 0;
+  bool operator==(const TimeKey& o) const { return basis == o.basis && basis_case == o.basis_case && param == o.param; }
+};
+constexpr int kTimeCache = 3;
+
 // The per-vertex kernel for the common case, every axis of the curve on a basis with TC time
 // functions: fixed trip counts let the compiler unroll it to 3 * TC multiply-adds.
 template <int TC>
@@ -130,13 +146,29 @@ void add_curve3(const float (*time)[kMaxTimeTerms], const float* w, const uint32
 }  // namespace
 
 void FrameEvaluator::apply_model(const Span& span, double tau, float sign, float* out) const {
+  TimeKey cache_key[kTimeCache];
+  float cache_time[kTimeCache][kMaxTimeTerms];
+  int cached = 0, next_slot = 0;
   for (size_t k = span.motions_begin; k < span.motions_end; ++k) {
     const CurveModel& cm = motions_[k];
     float time[3][kMaxTimeTerms];
     for (int a = 0; a < cm.axes; ++a) {
-      double t[kMaxTimeTerms] = {0, 0, 0, 0};
-      basis_time(cm.basis[a], cm.basis_case[a], cm.time_param[a], tau, t);
-      for (int i = 0; i < kMaxTimeTerms; ++i) time[a][i] = float(t[i]);
+      // The time functions cost far more than a curve's multiply-adds: reuse them when the
+      // previous curve or another axis has the same basis, case and parameter.
+      const TimeKey key{cm.basis[a], cm.basis_case[a], cm.time_param[a]};
+      int hit = -1;
+      for (int c = 0; c < cached && hit < 0; ++c)
+        if (cache_key[c] == key) hit = c;
+      if (hit < 0) {
+        double t[kMaxTimeTerms] = {0, 0, 0, 0};
+        basis_time(key.basis, key.basis_case, key.param, tau, t);
+        hit = next_slot;
+        next_slot = (next_slot + 1) % kTimeCache;
+        cached = std::min(cached + 1, kTimeCache);
+        cache_key[hit] = key;
+        for (int i = 0; i < kMaxTimeTerms; ++i) cache_time[hit][i] = to_float(t[i]);
+      }
+      std::copy_n(cache_time[hit], kMaxTimeTerms, time[a]);
     }
     const uint32_t begin = curves_->offsets[cm.curve], end = curves_->offsets[cm.curve + 1];
     const uint32_t* ids = curves_->vertices.data() + begin;

@@ -138,6 +138,26 @@ TEST(Container, RoundTripPreservesEveryField) {
   EXPECT_EQ(write_container(back), bytes);  // deterministic writer
 }
 
+// The writer never hands a reader other faces than model.faces: Traversal is used only for
+// faces already in traversal order, and then when it is smaller.
+TEST(Container, ReaderGetsTheModelFacesBack) {
+  Model m = small_model(3);
+  std::vector<uint32_t> strip;
+  for (uint32_t v = 0; v + 2 < 6; ++v) strip.insert(strip.end(), {v, v + 1 + v % 2, v + 2 - v % 2});
+  for (const std::vector<uint32_t>& faces : {m.faces, strip, traversal_order(strip), traversal_order(m.faces)}) {
+    m.faces = faces;
+    for (auto layout : {WriteOptions::FaceLayout::Smallest, WriteOptions::FaceLayout::Exact}) {
+      WriteOptions opt;
+      opt.face_layout = layout;
+      std::vector<uint8_t> bytes = write_container(m, opt);
+      Model back;
+      std::string err;
+      ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &back, &err)) << err;
+      EXPECT_EQ(back.faces, faces);
+    }
+  }
+}
+
 TEST(Container, ConnectivityIsOptional) {
   const Model m = small_model(3);
   WriteOptions opt;

@@ -62,6 +62,32 @@ inline Model small_model(uint32_t F, const std::vector<uint32_t>& segment_frames
   return m;
 }
 
+// An n x n vertex sheet (2 (n-1)^2 triangles, consistently wound) whose vertex ids are
+// scrambled by a fixed permutation, one open curve per row, F frames of grid() positions,
+// no segments. Scrambled ids make the FACE Traversal layout pay off.
+inline Model sheet_model(uint32_t n, uint32_t F) {
+  Model m = small_model(F);
+  const uint32_t V = n * n;
+  auto id = [&](uint32_t row, uint32_t col) { return (row * n + col) * 7919u % V; };  // 7919 prime, V < 7919
+  m.meta.vertex_count = V;
+  m.faces.clear();
+  for (uint32_t r = 0; r + 1 < n; ++r)
+    for (uint32_t c = 0; c + 1 < n; ++c)
+      m.faces.insert(m.faces.end(), {id(r, c), id(r, c + 1), id(r + 1, c), id(r + 1, c), id(r, c + 1), id(r + 1, c + 1)});
+  m.curves = Curves{};
+  for (uint32_t r = 0; r < n; ++r) {
+    m.curves.offsets.push_back(r * n);
+    m.curves.closed.push_back(0);
+    for (uint32_t c = 0; c < n; ++c) {
+      m.curves.vertices.push_back(id(r, c));
+      m.curves.u.push_back(quantize_curve_u(float(c) / float(n - 1)));
+    }
+  }
+  m.curves.offsets.push_back(V);
+  m.residual.payload = encode_residuals(m, grid(V, F));
+  return m;
+}
+
 // Exact position of the small model at frame f (origin + step * q), in double.
 inline double grid_position(const Model& m, uint32_t f, uint32_t v, int a) {
   return m.residual.origin[a] + m.residual.step * grid_value(f, v, a);
