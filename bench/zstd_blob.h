@@ -1,0 +1,26 @@
+// zstd and integer packing shared by the baselines that entropy-code quantized integers.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dcurve::bench {
+
+// Baselines compress with the same zstd level as the .dcrv container, so no side wins by
+// a stronger entropy-coder setting.
+constexpr int kBaselineZstdLevel = 19;
+
+std::vector<uint8_t> zstd_pack(const void* data, size_t size, int level = kBaselineZstdLevel);
+
+// Decompresses `blob`, which must hold exactly `expected_size` bytes.
+bool zstd_unpack(const std::vector<uint8_t>& blob, size_t expected_size, std::vector<uint8_t>* out,
+                 std::string* error);
+
+// Little-endian int32 in/out, so packed bytes do not depend on the host.
+void append_int32_le(const std::vector<int32_t>& values, std::vector<uint8_t>* out);
+std::vector<int32_t> read_int32_le(const uint8_t* data, size_t count);
+
+// Rounds x / step to the nearest integer; false when it leaves the int32 range.
+bool quantize(double x, double step, int32_t* q);
+
+}  // namespace dcurve::bench
