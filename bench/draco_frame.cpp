@@ -115,10 +115,11 @@ bool DracoFrameCodec::encode(const float* xyz, int bits, std::vector<char>* file
   return encode_mesh(*make_mesh(vertex_count_, faces_, xyz), bits, file, error);
 }
 
-bool DracoFrameCodec::decode(const std::vector<char>& file, std::vector<float>* xyz, std::string* error) const {
+bool DracoFrameCodec::decode(const std::vector<char>& file, std::vector<float>* xyz, std::string* error,
+                             bool verify) const {
   auto mesh = decode_mesh(file, error);
   if (!mesh) return false;
-  if (mesh->num_points() != point_to_vertex_.size() || face_points(*mesh) != decoded_faces_)
+  if (mesh->num_points() != point_to_vertex_.size() || (verify && face_points(*mesh) != decoded_faces_))
     return fail(error, "Draco decoded a vertex order other than the calibration's; cannot match vertices");
   const draco::PointAttribute* pos = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (!pos) return fail(error, "Draco file has no positions");

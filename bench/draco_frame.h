@@ -27,7 +27,9 @@ class DracoFrameCodec {
   bool encode(const float* xyz, int bits, std::vector<char>* file, std::string* error) const;
 
   // Decodes `file` with libdraco into `xyz` (vertex_count * 3 floats, input vertex order).
-  bool decode(const std::vector<char>& file, std::vector<float>* xyz, std::string* error) const;
+  // `verify` checks the decoded faces against the calibration (skip it only to time a file
+  // already verified, so the timing is libdraco's).
+  bool decode(const std::vector<char>& file, std::vector<float>* xyz, std::string* error, bool verify = true) const;
 
   // Bytes of a Draco file holding the connectivity and constant positions: the cost of the
   // edgebreaker-coded connectivity plus the file header, charged by baselines that code

@@ -74,15 +74,17 @@ bool bench_quantized_delta(const BenchContext& ctx, MethodResult* r, std::string
       prev[i] = q;
     }
   Layout layout = Layout::kFrameMajor;
-  std::vector<uint8_t> blob;
+  size_t ranked = 0;
   for (Layout l : {Layout::kFrameMajor, Layout::kAxisPlanes, Layout::kBytePlanes}) {
-    std::vector<uint8_t> bytes = arrange(deltas, VF, l);
-    std::vector<uint8_t> packed = zstd_pack(bytes.data(), bytes.size());
-    if (blob.empty() || packed.size() < blob.size()) {
-      blob = std::move(packed);
+    const std::vector<uint8_t> bytes = arrange(deltas, VF, l);
+    const size_t size = zstd_pack(bytes.data(), bytes.size(), kRankingZstdLevel).size();
+    if (ranked == 0 || size < ranked) {
+      ranked = size;
       layout = l;
     }
   }
+  const std::vector<uint8_t> arranged = arrange(deltas, VF, layout);
+  const std::vector<uint8_t> blob = zstd_pack(arranged.data(), arranged.size());
   r->encode_seconds = seconds_since(start);
 
   std::vector<std::vector<float>> decoded(F, std::vector<float>(V3));
