@@ -9,9 +9,6 @@ namespace dcurve::bench {
 // Baselines compress with the same zstd level as the .dcrv container, so no side wins by
 // a stronger entropy-coder setting.
 constexpr int kBaselineZstdLevel = 19;
-// Level used only to rank candidate layouts or parameters before the one final pack at
-// kBaselineZstdLevel: level 19 on every candidate would dominate the bench's run time.
-constexpr int kRankingZstdLevel = 3;
 
 std::vector<uint8_t> zstd_pack(const void* data, size_t size, int level = kBaselineZstdLevel);
 
