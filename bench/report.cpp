@@ -115,10 +115,12 @@ std::string results_csv(const std::vector<InputResult>& results) {
          "meets_tolerance,settings\n";
   for (const auto& in : results)
     for (const auto& m : in.methods) {
-      std::string settings = m.settings;
-      for (char& c : settings)
-        if (c == '"') c = '\'';
-      out << in.input << ',' << in.tolerance << ',' << in.vertices << ',' << in.frames << ',' << m.method << ','
+      // Free text is quoted, with its own double quotes turned into single ones.
+      std::string input = in.input, settings = m.settings;
+      for (std::string* text : {&input, &settings})
+        for (char& c : *text)
+          if (c == '"') c = '\'';
+      out << '"' << input << "\"," << in.tolerance << ',' << in.vertices << ',' << in.frames << ',' << m.method << ','
           << m.bytes << ',' << m.connectivity_bytes << ',' << fmt("%.6g", ratio_to_draco_per_frame(in, m)) << ','
           << fmt("%.6g", ratio_to_best_other(in, m)) << ',' << fmt("%.6g", m.bpvf) << ','
           << fmt("%.6g", m.max_error) << ',' << fmt("%.6g", m.rmse) << ',' << fmt("%.6g", m.kg_error_pct) << ','

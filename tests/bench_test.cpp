@@ -13,6 +13,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <sys/wait.h>
+
 #include "bench/baselines.h"
 #include "bench/draco_per_frame.h"
 #include "bench/plot.h"
@@ -214,6 +216,11 @@ TEST(BenchRunner, PcaFindsFewComponentsForRankOneMotion) {
   ASSERT_EQ(r.methods.size(), 1u);
   EXPECT_TRUE(r.methods[0].meets_tolerance) << r.methods[0].settings;
   EXPECT_EQ(r.methods[0].settings.rfind("k=1 ", 0), 0u) << r.methods[0].settings;
+}
+
+TEST(BenchRunner, SingleFrameRunsEveryMethod) {
+  const InputResult r = run_bench("one", waving_sheet(6, 1), 1e-3, nullptr);
+  for (const auto& m : r.methods) EXPECT_TRUE(m.meets_tolerance) << m.method << ": " << m.settings;
 }
 
 TEST(BenchRunner, RejectsUnknownMethodAndBadTolerance) {
