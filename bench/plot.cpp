@@ -10,6 +10,7 @@ namespace dcurve::bench {
 namespace {
 
 constexpr double kPanelW = 520, kPanelH = 380, kLeft = 64, kRight = 150, kTop = 34, kBottom = 46;
+constexpr double kLosslessStrip = 26;  // px left of the log axis where max error 0 is drawn
 const char* const kColors[] = {"#d62728", "#1f77b4", "#17becf", "#9467bd", "#2ca02c", "#7f7f7f", "#bcbd22",
                                "#8c564b", "#e377c2", "#ff7f0e"};
 
@@ -53,16 +54,23 @@ void draw_panel(std::ostringstream& svg, double ox, double oy, const std::string
   if (emax == 0) { emin = 1e-4; emax = 1e-2; }
   if (bmax == 0) { bmin = 1; bmax = 10; }
   double ex0, ex1, by0, by1;
-  decades(emin / 2, emax, &ex0, &ex1);  // room on the left for the lossless column
+  decades(emin, emax, &ex0, &ex1);
   decades(bmin, bmax, &by0, &by1);
   const double pw = kPanelW - kLeft - kRight, ph = kPanelH - kTop - kBottom;
-  auto X = [&](double e) { return ox + kLeft + (e > 0 ? (std::log10(e) - ex0) / (ex1 - ex0) * pw : 0.0); };
+  const double ax = ox + kLeft + kLosslessStrip, aw = pw - kLosslessStrip;  // the log axis
+  auto X = [&](double e) {
+    return e > 0 ? ax + (std::log10(e) - ex0) / (ex1 - ex0) * aw : ox + kLeft + kLosslessStrip / 2;
+  };
   auto Y = [&](double b) { return oy + kTop + ph - (std::log10(b) - by0) / (by1 - by0) * ph; };
 
   svg << "<text x='" << num(ox + kLeft) << "' y='" << num(oy + 20) << "' font-weight='bold'>" << escape(input)
       << "</text>\n";
   svg << "<rect x='" << num(ox + kLeft) << "' y='" << num(oy + kTop) << "' width='" << num(pw) << "' height='"
       << num(ph) << "' fill='none' stroke='#444'/>\n";
+  svg << "<line x1='" << num(ax) << "' y1='" << num(oy + kTop) << "' x2='" << num(ax) << "' y2='"
+      << num(oy + kTop + ph) << "' stroke='#444' stroke-dasharray='3,3'/><text x='"
+      << num(ox + kLeft + kLosslessStrip / 2) << "' y='" << num(oy + kTop + ph + 16)
+      << "' text-anchor='middle' font-size='11'>0</text>\n";
   for (double d = ex0; d <= ex1 + 1e-9; d += 1) {
     const double x = X(std::pow(10.0, d));
     svg << "<line x1='" << num(x) << "' y1='" << num(oy + kTop) << "' x2='" << num(x) << "' y2='"
@@ -76,7 +84,7 @@ void draw_panel(std::ostringstream& svg, double ox, double oy, const std::string
         << "' text-anchor='end' font-size='11'>" << std::pow(10.0, d) << "</text>\n";
   }
   svg << "<text x='" << num(ox + kLeft + pw / 2) << "' y='" << num(oy + kPanelH - 8)
-      << "' text-anchor='middle' font-size='12'>max error (fraction of L); left edge: lossless</text>\n";
+      << "' text-anchor='middle' font-size='12'>max error (fraction of L); left strip: lossless</text>\n";
   svg << "<text transform='translate(" << num(ox + 16) << "," << num(oy + kTop + ph / 2)
       << ") rotate(-90)' text-anchor='middle' font-size='12'>bits per vertex per frame</text>\n";
 

@@ -9,7 +9,7 @@
 namespace dcurve::bench {
 
 // A standalone SVG document: one panel per distinct input name (in first-seen order), both
-// axes logarithmic. Lossless methods (max error 0) sit on the panel's left edge; a hollow
+// axes logarithmic. Lossless methods (max error 0) sit in a strip left of the log axis; a hollow
 // marker means the method missed the tolerance.
 std::string rate_distortion_svg(const std::vector<InputResult>& results);
 
