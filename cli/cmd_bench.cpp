@@ -18,6 +18,21 @@ std::string input_name(const std::string& path) {
   return p.filename().string();
 }
 
+// One bench input: a frame folder. Scene files and built-in scene names need
+// encoder/sim/scene.h (load_scene_file / builtin_scene + simulate_scene), not on this branch.
+bool load_input(const std::string& arg, std::string* name, Animation* anim, std::string* error) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(arg, ec)) {
+    *name = input_name(arg);
+    return read_frame_folder(arg, anim, error);
+  }
+  if (std::filesystem::exists(arg, ec))
+    *error = arg + ": scene files need the scene simulator, which is not built yet";
+  else
+    *error = arg + ": no such folder (built-in scene names need the scene simulator, which is not built yet)";
+  return false;
+}
+
 bool write_text(const std::string& path, const std::string& text) {
   std::string err;
   if (write_file_atomic(path, text.data(), text.size(), &err)) return true;
@@ -64,28 +79,15 @@ Action add_bench(CLI::App& app) {
     }
     if (o->tolerances.empty()) o->tolerances = {1e-3};
     std::vector<std::pair<std::string, Animation>> inputs;
-    for (const auto& path : o->inputs) {
-      std::error_code ec;
+    for (const auto& arg : o->inputs) {
+      std::string name, err;
       Animation anim;
-      std::string err;
-      if (std::filesystem::is_directory(path, ec)) {
-        if (!read_frame_folder(path, &anim, &err)) {
-          std::fprintf(stderr, "dcurve bench: %s\n", err.c_str());
-          return 1;
-        }
-      } else if (std::filesystem::exists(path, ec)) {
-        std::fprintf(stderr, "dcurve bench: %s: scene files need the scene simulator, which is not built yet\n",
-                     path.c_str());
-        return 1;
-      } else {
-        std::fprintf(stderr,
-                     "dcurve bench: %s: no such folder (built-in scene names need the scene simulator, "
-                     "which is not built yet)\n",
-                     path.c_str());
+      if (!load_input(arg, &name, &anim, &err)) {
+        std::fprintf(stderr, "dcurve bench: %s\n", err.c_str());
         return 1;
       }
       if (o->max_frames > 0 && anim.frames.size() > o->max_frames) anim.frames.resize(o->max_frames);
-      inputs.emplace_back(input_name(path), std::move(anim));
+      inputs.emplace_back(name, std::move(anim));
     }
     std::vector<bench::InputResult> results;
     for (const auto& [name, anim] : inputs)
