@@ -76,9 +76,11 @@ bool bench_quantized_delta(const BenchContext& ctx, MethodResult* r, std::string
   // Candidates are ranked at the final level: lower levels rank these layouts differently.
   Layout layout = Layout::kFrameMajor;
   std::vector<uint8_t> blob;
+  std::string sizes;  // every layout's payload, so the settings show what the choice won
   for (Layout l : {Layout::kFrameMajor, Layout::kAxisPlanes, Layout::kBytePlanes}) {
     const std::vector<uint8_t> bytes = arrange(deltas, VF, l);
     std::vector<uint8_t> packed = zstd_pack(bytes.data(), bytes.size());
+    sizes += (sizes.empty() ? "" : "/") + std::to_string(packed.size());
     if (blob.empty() || packed.size() < blob.size()) {
       blob = std::move(packed);
       layout = l;
@@ -102,9 +104,9 @@ bool bench_quantized_delta(const BenchContext& ctx, MethodResult* r, std::string
   if (!decode_all()) return false;
   set_measures(ctx, decoded, blob.size() + kHeaderBytes + ctx.connectivity_charge, ctx.connectivity_charge, r);
   r->decode_vertices_per_second = decode_rate(ctx, decode_all);
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "grid step %.4g (2EL/sqrt3), %s, zstd %d", step,
-                kLayoutNames[int(layout)], kBaselineZstdLevel);
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "grid step %.4g (2EL/sqrt3), %s, zstd %d (payload B frame-major/axis/byte planes %s)",
+                step, kLayoutNames[int(layout)], kBaselineZstdLevel, sizes.c_str());
   r->settings = buf;
   return true;
 }
