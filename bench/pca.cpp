@@ -107,6 +107,7 @@ std::vector<uint8_t> pack(const Quantized& q) {
   append_int32_le(q.mean, &raw);
   append_int32_le(q.coeffs, &raw);
   append_int32_le(q.basis, &raw);
+  raw = to_byte_planes(raw);
   return zstd_pack(raw.data(), raw.size());
 }
 
@@ -114,6 +115,7 @@ bool unpack(const std::vector<uint8_t>& blob, size_t F, Quantized* q, std::strin
   const size_t V3 = q->mean.size(), k = q->k;
   std::vector<uint8_t> raw;
   if (!zstd_unpack(blob, 4 * (V3 + F * k + k * V3), &raw, error)) return false;
+  raw = from_byte_planes(raw);
   q->mean = read_int32_le(raw.data(), V3);
   q->coeffs = read_int32_le(raw.data() + 4 * V3, F * k);
   q->basis = read_int32_le(raw.data() + 4 * (V3 + F * k), k * V3);

@@ -26,20 +26,12 @@ std::vector<uint8_t> arrange(const std::vector<int32_t>& deltas, size_t VF, Layo
   }
   std::vector<uint8_t> bytes;
   append_int32_le(order, &bytes);
-  if (layout != Layout::kBytePlanes) return bytes;
-  std::vector<uint8_t> planes(bytes.size());
-  const size_t n = order.size();
-  for (size_t i = 0; i < n; ++i)
-    for (int b = 0; b < 4; ++b) planes[b * n + i] = bytes[4 * i + b];
-  return planes;
+  return layout == Layout::kBytePlanes ? to_byte_planes(bytes) : bytes;
 }
 
 std::vector<int32_t> unarrange(const std::vector<uint8_t>& bytes, size_t VF, Layout layout) {
   const size_t n = VF * 3;
-  std::vector<uint8_t> le = bytes;
-  if (layout == Layout::kBytePlanes)
-    for (size_t i = 0; i < n; ++i)
-      for (int b = 0; b < 4; ++b) le[4 * i + b] = bytes[b * n + i];
+  const std::vector<uint8_t> le = layout == Layout::kBytePlanes ? from_byte_planes(bytes) : bytes;
   std::vector<int32_t> order = read_int32_le(le.data(), n);
   if (layout == Layout::kFrameMajor) return order;
   std::vector<int32_t> deltas(n);

@@ -42,6 +42,22 @@ std::vector<int32_t> read_int32_le(const uint8_t* data, size_t count) {
   return out;
 }
 
+std::vector<uint8_t> to_byte_planes(const std::vector<uint8_t>& le) {
+  const size_t n = le.size() / 4;
+  std::vector<uint8_t> planes(le.size());
+  for (size_t i = 0; i < n; ++i)
+    for (size_t b = 0; b < 4; ++b) planes[b * n + i] = le[4 * i + b];
+  return planes;
+}
+
+std::vector<uint8_t> from_byte_planes(const std::vector<uint8_t>& planes) {
+  const size_t n = planes.size() / 4;
+  std::vector<uint8_t> le(planes.size());
+  for (size_t i = 0; i < n; ++i)
+    for (size_t b = 0; b < 4; ++b) le[4 * i + b] = planes[b * n + i];
+  return le;
+}
+
 bool quantize(double x, double step, int32_t* q) {
   const double g = std::nearbyint(x / step);
   if (!(std::fabs(g) <= 2147483647.0)) return false;

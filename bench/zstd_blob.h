@@ -20,6 +20,11 @@ bool zstd_unpack(const std::vector<uint8_t>& blob, size_t expected_size, std::ve
 void append_int32_le(const std::vector<int32_t>& values, std::vector<uint8_t>* out);
 std::vector<int32_t> read_int32_le(const uint8_t* data, size_t count);
 
+// Byte b of every 4-byte value together, b = 0..3: the high bytes of small integers form
+// long zero runs that zstd codes almost for free. `le` holds whole int32 values.
+std::vector<uint8_t> to_byte_planes(const std::vector<uint8_t>& le);
+std::vector<uint8_t> from_byte_planes(const std::vector<uint8_t>& planes);
+
 // Rounds x / step to the nearest integer; false when it leaves the int32 range.
 bool quantize(double x, double step, int32_t* q);
 
