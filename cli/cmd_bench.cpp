@@ -1,20 +1,108 @@
 #include <cstdio>
+#include <filesystem>
 
+#include "bench/plot.h"
+#include "bench/report.h"
+#include "bench/runner.h"
 #include "cli/commands.h"
+#include "cli/progress.h"
+#include "encoder/io/files.h"
 
 namespace dcurve::cli {
+namespace {
+
+// The label a result carries: the folder's own name.
+std::string input_name(const std::string& path) {
+  std::filesystem::path p(path);
+  if (!p.has_filename()) p = p.parent_path();
+  return p.filename().string();
+}
+
+// One bench input: a frame folder. Scene files and built-in scene names need
+// encoder/sim/scene.h (load_scene_file / builtin_scene + simulate_scene), not on this branch.
+bool load_input(const std::string& arg, std::string* name, Animation* anim, std::string* error) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(arg, ec)) {
+    *name = input_name(arg);
+    return read_frame_folder(arg, anim, error);
+  }
+  if (std::filesystem::exists(arg, ec))
+    *error = arg + ": scene files need the scene simulator, which is not built yet";
+  else
+    *error = arg + ": no such folder (built-in scene names need the scene simulator, which is not built yet)";
+  return false;
+}
+
+bool write_text(const std::string& path, const std::string& text) {
+  std::string err;
+  if (write_file_atomic(path, text.data(), text.size(), &err)) return true;
+  std::fprintf(stderr, "dcurve bench: %s\n", err.c_str());
+  return false;
+}
+
+}  // namespace
 
 Action add_bench(CLI::App& app) {
   struct Opts {
-    std::vector<std::string> inputs;
+    std::vector<std::string> inputs, methods;
+    std::vector<double> tolerances;
+    std::string csv, plot, protocol;
     bool json = false;
+    uint32_t max_frames = 0;
   };
   auto o = std::make_shared<Opts>();
-  app.add_option("inputs", o->inputs, "Frame folders, scene files or built-in scene names");
-  app.add_flag("--json", o->json, "Print one JSON object on stdout");
+  app.add_option("inputs", o->inputs, "Frame folders, scene files or built-in scene names (none: built-in corpus)");
+  app.add_option("--tolerance", o->tolerances,
+                 "Max error, fraction of the rest-pose bounding-box diagonal; repeat for several (default 1e-3)")
+      ->check(CLI::Range(1e-7, 0.5))
+      ->allow_extra_args(false);
+  app.add_option("--methods", o->methods, "Comma-separated subset of methods (default: all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(bench::all_methods()));
+  app.add_option("--frames", o->max_frames, "Use only the first N frames of each input (0 = all)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--json", o->json, "Print one JSON object on stdout instead of the table");
+  app.add_option("--csv", o->csv, "Also write the results as CSV to this file");
+  app.add_option("--plot", o->plot, "Also write the rate-distortion plot (SVG) to this file");
+  app.add_option("--protocol", o->protocol, "Run a paper's own protocol instead of the comparison")
+      ->check(CLI::IsMember({"paper2024", "paper2022"}));
   return [o]() {
-    std::fprintf(stderr, "dcurve bench: the comparison benchmark is not built yet\n");
-    return 1;
+    if (!o->protocol.empty()) {
+      std::fprintf(stderr, "dcurve bench: --protocol %s: the paper protocols are not built yet\n",
+                   o->protocol.c_str());
+      return 1;
+    }
+    if (o->inputs.empty()) {
+      std::fprintf(stderr, "dcurve bench: the built-in corpus needs the scene simulator, which is not built yet; "
+                           "give frame folders\n");
+      return 1;
+    }
+    if (o->tolerances.empty()) o->tolerances = {1e-3};
+    std::vector<std::pair<std::string, Animation>> inputs;
+    for (const auto& arg : o->inputs) {
+      std::string name, err;
+      Animation anim;
+      if (!load_input(arg, &name, &anim, &err)) {
+        std::fprintf(stderr, "dcurve bench: %s\n", err.c_str());
+        return 1;
+      }
+      if (o->max_frames > 0 && anim.frames.size() > o->max_frames) anim.frames.resize(o->max_frames);
+      inputs.emplace_back(name, std::move(anim));
+    }
+    std::vector<bench::InputResult> results;
+    for (const auto& [name, anim] : inputs)
+      for (double tol : o->tolerances) {
+        char label[64];
+        std::snprintf(label, sizeof label, "%.12s %g", name.c_str(), tol);
+        results.push_back(bench::run_bench(name, anim, tol, o->methods, progress_bar(label)));
+      }
+    if (o->json)
+      std::printf("%s\n", bench::results_json(results).dump().c_str());
+    else
+      std::printf("%s", bench::format_table(results).c_str());
+    if (!o->csv.empty() && !write_text(o->csv, bench::results_csv(results))) return 1;
+    if (!o->plot.empty() && !write_text(o->plot, bench::rate_distortion_svg(results))) return 1;
+    return 0;
   };
 }
 

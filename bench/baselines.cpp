@@ -1,2 +1,0 @@
-// Placeholder translation unit so the bench library exists before the baselines land.
-namespace dcurve::bench {}

@@ -1,0 +1,34 @@
+// dcurve itself, through the public encoder and the runtime decoder. The file is what a
+// user ships: its own connectivity section included (reported apart).
+#include "bench/baselines.h"
+#include "decoder/dcurve.hpp"
+#include "encoder/encoder.h"
+
+namespace dcurve::bench {
+
+bool bench_dcurve(const BenchContext& ctx, MethodResult* r, std::string* error) {
+  EncodeOptions opt;
+  opt.tolerance = ctx.tolerance;
+  std::vector<uint8_t> file;
+  EncodeReport rep;
+  const auto start = std::chrono::steady_clock::now();
+  if (!encode_animation(ctx.anim, opt, &file, &rep, error)) return false;
+  r->encode_seconds = seconds_since(start);
+
+  const uint32_t F = uint32_t(ctx.anim.frames.size());
+  std::vector<std::vector<float>> decoded(F, std::vector<float>(size_t(ctx.anim.vertex_count) * 3));
+  auto decode_all = [&]() {
+    auto dec = Decoder::open_memory(file.data(), file.size(), error);
+    if (!dec || dec->vertex_count() != ctx.anim.vertex_count || dec->frame_count() != F) return false;
+    for (uint32_t f = 0; f < F; ++f) dec->evaluate_frame(f, decoded[f].data());
+    return true;
+  };
+  if (!decode_all()) return false;
+  set_measures(ctx, decoded, file.size(), rep.connectivity_bytes, r);
+  r->decode_vertices_per_second = decode_rate(ctx, decode_all);
+  r->settings = "curves=" + std::to_string(rep.curves) + " segments=" + std::to_string(rep.segments) +
+                " own connectivity section";
+  return true;
+}
+
+}  // namespace dcurve::bench
