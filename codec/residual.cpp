@@ -1,43 +1,178 @@
 #include "codec/residual.h"
 
+#include <algorithm>
+#include <type_traits>
+
 #include "codec/bytes.h"
+#include "codec/crc32.h"
+#include "codec/int_coder.h"
+#include "codec/range_coder.h"
 
 namespace dcurve {
 namespace {
-uint64_t zigzag(int64_t v) { return uint64_t(v << 1) ^ uint64_t(v >> 63); }
-int64_t unzigzag(uint64_t z) { return int64_t(z >> 1) ^ -int64_t(z & 1); }
+
+constexpr uint8_t kFormatVersion = 1;
+constexpr uint8_t kNeighbourFlag = 0x80;
+
+// Context of a residual: how large the residuals around it already were. Neighbours in
+// this frame (7 classes, the last one for "no decoded neighbour"), the same vertex and
+// axis in the previous frame (4), the earlier axes of the same vertex in this frame
+// (4, plus 1 for the first axis).
+constexpr int kNeighbourClasses = 7, kTemporalClasses = 4, kAxisClasses = 5;
+constexpr int kContexts = kNeighbourClasses * kTemporalClasses * kAxisClasses;
+
+int magnitude_class(uint32_t m) {
+  return m < 3 ? int(m) : m <= 4 ? 3 : m <= 8 ? 4 : 5;
+}
+
+uint32_t clamp_abs(int64_t r) {
+  const uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
+  return m > 0xFFFFu ? 0xFFFFu : uint32_t(m);
+}
+
+// Walks the frames in decoding order; in encode mode codes q's residuals, in decode mode
+// fills q from the stream. One body for both so they cannot drift apart.
+template <class Coder>
+bool walk_frames(const Model& model, const Traversal& trav, const PredictorPlan& plan,
+                 const ResidualOptions& options, Coder& coder, int32_t* q) {
+  constexpr bool kDecode = std::is_same<Coder, RangeDecoder>::value;
+  const uint32_t V = model.meta.vertex_count, F = model.meta.frame_count;
+  const size_t stride = size_t(V) * 3;
+  AdaptiveIntCoder ints(kContexts);
+  std::vector<int64_t> base(stride);
+  std::vector<uint32_t> cur_abs(stride, 0), prev_abs(stride, 0);
+  for (uint32_t f = 0; f < F; ++f) {
+    const PredictorChoice* choice = &plan[size_t(f) * 3];
+    for (int a = 0; a < 3; ++a) base_prediction(choice[a], f, a, V, q, options, &base[size_t(a) * V]);
+    int32_t* qf = q + size_t(f) * stride;
+    for (uint32_t pos = 0; pos < V; ++pos) {
+      const uint32_t v = trav.order[pos];
+      const uint32_t nb_begin = trav.nb_offsets[pos], nb_end = trav.nb_offsets[pos + 1];
+      uint32_t axis_max = 0;
+      for (int a = 0; a < 3; ++a) {
+        const int64_t* ba = &base[size_t(a) * V];
+        int64_t pred = ba[v];
+        if (choice[a].neighbours) pred += neighbour_correction(trav, pos, a, qf, ba);
+        int nb_class = kNeighbourClasses - 1;
+        if (nb_begin != nb_end) {
+          uint32_t sum = 0;
+          for (uint32_t k = nb_begin; k < nb_end; ++k) sum += cur_abs[size_t(trav.nb[k]) * 3 + size_t(a)];
+          nb_class = magnitude_class((sum + (nb_end - nb_begin) - 1) / (nb_end - nb_begin));
+        }
+        const size_t i = size_t(v) * 3 + size_t(a);
+        const int t_class = std::min(magnitude_class(prev_abs[i]), kTemporalClasses - 1);
+        const int a_class = a == 0 ? kAxisClasses - 1 : std::min(magnitude_class(axis_max), kAxisClasses - 2);
+        const int ctx = (nb_class * kTemporalClasses + t_class) * kAxisClasses + a_class;
+        int64_t r;
+        if constexpr (kDecode) {
+          r = ints.decode(coder, ctx);
+          const int64_t value = pred + r;
+          if (value < INT32_MIN || value > INT32_MAX || coder.overrun()) return false;
+          qf[i] = int32_t(value);
+        } else {
+          r = int64_t(qf[i]) - pred;
+          ints.encode(coder, ctx, r);
+        }
+        cur_abs[i] = clamp_abs(r);
+        axis_max = std::max(axis_max, cur_abs[i]);
+      }
+    }
+    std::swap(cur_abs, prev_abs);
+  }
+  return true;
+}
+
+// CRC-32C of the values as little-endian int32, so a corrupted stream that still decodes
+// to in-range values is caught.
+uint32_t values_checksum(const std::vector<int32_t>& q) {
+  uint32_t crc = 0;
+  uint8_t chunk[4096];
+  for (size_t i = 0; i < q.size();) {
+    size_t n = 0;
+    for (; n + 4 <= sizeof chunk && i < q.size(); ++i, n += 4) {
+      const uint32_t u = uint32_t(q[i]);
+      for (int b = 0; b < 4; ++b) chunk[n + size_t(b)] = uint8_t(u >> (8 * b));
+    }
+    crc = crc32c(chunk, n, crc);
+  }
+  return crc;
+}
+
+bool fail(std::string* error, const std::string& msg) {
+  if (error) *error = msg;
+  return false;
+}
+
 }  // namespace
 
-// Predictor: the same vertex in the previous frame (frame 0 against zero). The container's
-// zstd does the entropy coding.
-std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q) {
-  const size_t n = size_t(model.meta.vertex_count) * 3;
+PredictorPlan default_predictor_plan(uint32_t frame_count) {
+  PredictorPlan plan(size_t(frame_count) * 3);
+  for (int a = 0; a < 3 && frame_count > 0; ++a) plan[size_t(a)].kind = PredictorKind::None;
+  return plan;
+}
+
+std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
+                                      const PredictorPlan* plan, const ResidualOptions& options) {
+  const uint32_t F = model.meta.frame_count;
+  const PredictorPlan fallback = plan ? PredictorPlan() : default_predictor_plan(F);
+  const PredictorPlan& p = plan ? *plan : fallback;
+  const Traversal trav = build_traversal(model);
   ByteWriter w;
-  for (size_t i = 0; i < q.size(); ++i) {
-    int64_t pred = i >= n ? q[i - n] : 0;
-    w.varint(zigzag(int64_t(q[i]) - pred));
+  w.u8(kFormatVersion);
+  w.u8(trav.from_faces ? 1 : 0);
+  w.u32(values_checksum(q));
+  for (const PredictorChoice& c : p) {
+    w.u8(uint8_t(uint8_t(c.kind) | (c.neighbours ? kNeighbourFlag : 0)));
+    if (c.kind == PredictorKind::Reference) w.varint(c.ref_distance);
   }
+  RangeEncoder enc;
+  std::vector<int32_t> work(q);  // the walker reads q through the same pointer in both modes
+  walk_frames(model, trav, p, options, enc, work.data());
+  const std::vector<uint8_t>& stream = enc.finish();
+  w.varint(stream.size());
+  w.bytes(stream.data(), stream.size());
   return std::move(w.data());
 }
 
-bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error) {
-  const size_t n = size_t(model.meta.vertex_count) * 3;
-  const size_t total = n * model.meta.frame_count;
-  q->resize(total);
+bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
+                      const ResidualOptions& options) {
+  const uint32_t V = model.meta.vertex_count, F = model.meta.frame_count;
+  const size_t total = size_t(V) * 3 * F;
+  if (options.model_prediction && options.model_prediction->size() != total)
+    return fail(error, "model prediction has the wrong number of values");
   ByteReader r(model.residual.payload.data(), model.residual.payload.size());
-  for (size_t i = 0; i < total; ++i) {
-    int64_t pred = i >= n ? (*q)[i - n] : 0;
-    int64_t v = pred + unzigzag(r.varint());
-    if (!r.ok || v < INT32_MIN || v > INT32_MAX) {
-      if (error) *error = "residual stream is truncated or out of range";
-      return false;
+  const uint8_t version = r.u8();
+  const uint8_t from_faces = r.u8();
+  const uint32_t checksum = r.u32();
+  if (!r.ok) return fail(error, "residual stream is truncated");
+  if (version != kFormatVersion) return fail(error, "residual stream version " + std::to_string(version) + " is not supported");
+  if (from_faces != (model.faces.empty() ? 0 : 1))
+    return fail(error, "residual stream was coded with a different neighbour structure (faces present or not)");
+  PredictorPlan plan(size_t(F) * 3);
+  for (size_t i = 0; i < plan.size(); ++i) {
+    const uint8_t b = r.u8();
+    const uint8_t kind = b & uint8_t(~kNeighbourFlag);
+    if (!r.ok || kind >= kPredictorKindCount) return fail(error, "residual predictor table is malformed");
+    plan[i].kind = PredictorKind(kind);
+    plan[i].neighbours = (b & kNeighbourFlag) != 0;
+    if (plan[i].kind == PredictorKind::Reference) {
+      const uint64_t d = r.varint();
+      plan[i].ref_distance = d > UINT32_MAX ? 0 : uint32_t(d);
     }
-    (*q)[i] = int32_t(v);
+    if (!r.ok || !predictor_usable(plan[i], uint32_t(i / 3), options))
+      return fail(error, plan[i].kind == PredictorKind::Model && r.ok
+                             ? "residual stream needs the motion model prediction, which was not supplied"
+                             : "residual predictor table refers to an unavailable frame");
   }
-  if (r.remaining() != 0) {
-    if (error) *error = "residual stream has trailing bytes";
-    return false;
-  }
+  const uint64_t stream_size = r.varint();
+  if (!r.ok || stream_size != r.remaining()) return fail(error, "residual stream length does not match the payload");
+  const uint8_t* stream = r.take(size_t(stream_size));
+  const Traversal trav = build_traversal(model);
+  q->assign(total, 0);
+  RangeDecoder dec(stream, size_t(stream_size));
+  if (!walk_frames(model, trav, plan, options, dec, q->data()) || dec.overrun())
+    return fail(error, "residual stream is truncated or decodes out of range");
+  if (values_checksum(*q) != checksum) return fail(error, "residual stream is corrupted (checksum mismatch)");
   return true;
 }
 

@@ -1,5 +1,7 @@
 // The residual layer: integer grid positions of every input frame, coded against
-// predictions. Encoder and decoder share this file so the round trip is exact.
+// predictions chosen per frame and axis, with a context-adaptive range coder. Encoder and
+// decoder share this file so the round trip is bit-exact. format_spec/residual.md is the
+// byte layout.
 //
 // Grid positions are laid out frame-major: q[(f * V + v) * 3 + axis].
 #pragma once
@@ -8,15 +10,30 @@
 #include <vector>
 
 #include "codec/model.h"
+#include "codec/predictors.h"
 
 namespace dcurve {
 
-// Codes the grid positions `q` (frame_count * vertex_count * 3 values) of `model` into a
-// payload for model.residual.payload. `model` supplies counts and curves.
-std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q);
+// The predictor of every (frame, axis): entry f * 3 + axis.
+using PredictorPlan = std::vector<PredictorChoice>;
+
+// The plan used when the caller has none: frame 0 from its mesh neighbours, every later
+// frame as the previous frame plus the neighbours' mean motion.
+PredictorPlan default_predictor_plan(uint32_t frame_count);
+
+// Codes the grid positions `q` (frame_count * vertex_count * 3 values, each an int32) of
+// `model` into a payload for model.residual.payload. `model` supplies counts, faces (the
+// neighbour structure; leave them empty when the file will not store them) and curves.
+// `plan` (frame_count * 3 entries, each usable per predictor_usable) picks the predictors;
+// null means default_predictor_plan.
+std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
+                                      const PredictorPlan* plan = nullptr,
+                                      const ResidualOptions& options = {});
 
 // Reverses encode_residuals. `q` receives frame_count * vertex_count * 3 values. Returns
-// false with a message on a malformed payload; never reads outside the payload.
-bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error);
+// false with a message on a malformed or corrupted payload (a checksum of the decoded
+// values is verified); never reads outside the payload.
+bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
+                      const ResidualOptions& options = {});
 
 }  // namespace dcurve

@@ -7,6 +7,7 @@
 #include "codec/model.h"
 #include "codec/residual.h"
 #include "decoder/dcurve.hpp"
+#include "encoder/rate/residual_plan.h"
 
 namespace dcurve {
 namespace {
@@ -41,7 +42,8 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   const uint32_t V = anim.vertex_count, F = uint32_t(anim.frames.size());
   Model m;
   m.meta = {V, F, anim.frame_rate, opt.tolerance, L, ""};
-  m.faces = anim.faces;
+  // The residual layer's neighbour structure may only use what the file will store.
+  if (opt.connectivity) m.faces = anim.faces;
   m.curves = singleton_curves(V);
 
   // A cubic cell of side s has half-diagonal s*sqrt(3)/2: this step keeps every rounded
@@ -61,7 +63,8 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
       if (g > INT32_MAX) return fail(error, "tolerance too small for the motion range (grid overflow)");
       q[f * size_t(V) * 3 + i] = int32_t(g);
     }
-  r.payload = encode_residuals(m, q);
+  const PredictorPlan plan = choose_predictor_plan(m, q);
+  r.payload = encode_residuals(m, q, &plan);
   if (opt.progress) opt.progress(0.5);
 
   WriteOptions wo;

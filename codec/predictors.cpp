@@ -1,0 +1,121 @@
+#include "codec/predictors.h"
+
+#include <algorithm>
+#include <deque>
+
+namespace dcurve {
+namespace {
+
+// Vertex adjacency (each undirected edge once per endpoint), sorted by neighbour id so
+// the traversal is deterministic.
+void adjacency(const std::vector<uint32_t>& faces, uint32_t V, std::vector<uint32_t>* offsets,
+               std::vector<uint32_t>* adj) {
+  std::vector<uint64_t> edges;
+  edges.reserve(faces.size() * 2);
+  for (size_t t = 0; t + 2 < faces.size(); t += 3)
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t a = faces[t + size_t(k)], b = faces[t + size_t((k + 1) % 3)];
+      if (a == b) continue;
+      edges.push_back(a << 32 | b);
+      edges.push_back(b << 32 | a);
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  offsets->assign(size_t(V) + 1, 0);
+  for (uint64_t e : edges) ++(*offsets)[size_t(e >> 32) + 1];
+  for (uint32_t v = 0; v < V; ++v) (*offsets)[v + 1] += (*offsets)[v];
+  adj->resize(edges.size());
+  for (size_t i = 0; i < edges.size(); ++i) (*adj)[i] = uint32_t(edges[i]);
+}
+
+Traversal traversal_from_faces(const Model& m) {
+  const uint32_t V = m.meta.vertex_count;
+  std::vector<uint32_t> off, adj;
+  adjacency(m.faces, V, &off, &adj);
+  Traversal t;
+  t.from_faces = true;
+  t.order.reserve(V);
+  std::vector<uint32_t> pos(V, UINT32_MAX);
+  std::deque<uint32_t> queue;
+  for (uint32_t seed = 0; seed < V; ++seed) {
+    if (pos[seed] != UINT32_MAX) continue;
+    pos[seed] = uint32_t(t.order.size());
+    t.order.push_back(seed);
+    queue.push_back(seed);
+    while (!queue.empty()) {
+      const uint32_t v = queue.front();
+      queue.pop_front();
+      for (uint32_t k = off[v]; k < off[v + 1]; ++k)
+        if (pos[adj[k]] == UINT32_MAX) {
+          pos[adj[k]] = uint32_t(t.order.size());
+          t.order.push_back(adj[k]);
+          queue.push_back(adj[k]);
+        }
+    }
+  }
+  t.nb_offsets.assign(size_t(V) + 1, 0);
+  for (uint32_t i = 0; i < V; ++i) {
+    const uint32_t v = t.order[i];
+    for (uint32_t k = off[v]; k < off[v + 1]; ++k)
+      if (pos[adj[k]] < i) t.nb.push_back(adj[k]);
+    t.nb_offsets[i + 1] = uint32_t(t.nb.size());
+  }
+  return t;
+}
+
+Traversal traversal_from_curves(const Model& m) {
+  Traversal t;
+  const Curves& c = m.curves;
+  t.order = c.vertices;
+  t.nb_offsets.assign(t.order.size() + 1, 0);
+  for (uint32_t k = 0; k < c.curve_count(); ++k)
+    for (uint32_t i = c.offsets[k]; i < c.offsets[k + 1]; ++i) {
+      if (i > c.offsets[k]) t.nb.push_back(c.vertices[i - 1]);
+      t.nb_offsets[i + 1] = uint32_t(t.nb.size());
+    }
+  return t;
+}
+
+}  // namespace
+
+Traversal build_traversal(const Model& model) {
+  return model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);
+}
+
+bool predictor_usable(const PredictorChoice& c, uint32_t f, const ResidualOptions& options) {
+  switch (c.kind) {
+    case PredictorKind::None: return true;
+    case PredictorKind::Reference: return c.ref_distance >= 1 && c.ref_distance <= f;
+    case PredictorKind::SecondOrder: return f >= 2;
+    case PredictorKind::Model: return options.model_prediction != nullptr;
+  }
+  return false;
+}
+
+void base_prediction(const PredictorChoice& c, uint32_t f, int axis, uint32_t V, const int32_t* q,
+                     const ResidualOptions& options, int64_t* base) {
+  const size_t stride = size_t(V) * 3, a = size_t(axis);
+  switch (c.kind) {
+    case PredictorKind::None:
+      std::fill(base, base + V, int64_t(0));
+      return;
+    case PredictorKind::Reference: {
+      const int32_t* r = q + size_t(f - c.ref_distance) * stride;
+      for (uint32_t v = 0; v < V; ++v) base[v] = r[size_t(v) * 3 + a];
+      return;
+    }
+    case PredictorKind::SecondOrder: {
+      const int32_t* p1 = q + size_t(f - 1) * stride;
+      const int32_t* p2 = q + size_t(f - 2) * stride;
+      for (uint32_t v = 0; v < V; ++v) base[v] = 2 * int64_t(p1[size_t(v) * 3 + a]) - p2[size_t(v) * 3 + a];
+      return;
+    }
+    case PredictorKind::Model: {
+      const int32_t* mp = options.model_prediction->data() + size_t(f) * stride;
+      for (uint32_t v = 0; v < V; ++v) base[v] = mp[size_t(v) * 3 + a];
+      return;
+    }
+  }
+}
+
+}  // namespace dcurve
