@@ -1,7 +1,6 @@
 #include "codec/residual.h"
 
 #include <algorithm>
-#include <type_traits>
 
 #include "codec/bytes.h"
 #include "codec/crc32.h"
@@ -30,15 +29,14 @@ uint32_t clamp_abs(int64_t r) {
   return m > 0xFFFFu ? 0xFFFFu : uint32_t(m);
 }
 
-// Walks the frames in decoding order; in encode mode codes q's residuals, in decode mode
-// fills q from the stream. One body for both so they cannot drift apart.
-template <class Coder>
+// Walks the frames in decoding order, calling step(ctx, &r) for every residual r. When
+// decoding, step writes r and the walker fills q; otherwise the walker computes r from q
+// and step codes or records it. One body for all uses so they cannot drift apart.
+template <bool kDecode, class Step>
 bool walk_frames(const Model& model, const Traversal& trav, const PredictorPlan& plan,
-                 const ResidualOptions& options, Coder& coder, int32_t* q) {
-  constexpr bool kDecode = std::is_same<Coder, RangeDecoder>::value;
+                 const ResidualOptions& options, int32_t* q, Step step) {
   const uint32_t V = model.meta.vertex_count, F = model.meta.frame_count;
   const size_t stride = size_t(V) * 3;
-  AdaptiveIntCoder ints(kContexts);
   std::vector<int64_t> base(stride);
   std::vector<uint32_t> cur_abs(stride, 0), prev_abs(stride, 0);
   for (uint32_t f = 0; f < F; ++f) {
@@ -65,13 +63,13 @@ bool walk_frames(const Model& model, const Traversal& trav, const PredictorPlan&
         const int ctx = (nb_class * kTemporalClasses + t_class) * kAxisClasses + a_class;
         int64_t r;
         if constexpr (kDecode) {
-          r = ints.decode(coder, ctx);
+          if (!step(ctx, &r)) return false;
           const int64_t value = pred + r;
-          if (value < INT32_MIN || value > INT32_MAX || coder.overrun()) return false;
+          if (value < INT32_MIN || value > INT32_MAX) return false;
           qf[i] = int32_t(value);
         } else {
           r = int64_t(qf[i]) - pred;
-          ints.encode(coder, ctx, r);
+          step(ctx, &r);
         }
         cur_abs[i] = clamp_abs(r);
         axis_max = std::max(axis_max, cur_abs[i]);
@@ -126,8 +124,12 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
     if (c.kind == PredictorKind::Reference) w.varint(c.ref_distance);
   }
   RangeEncoder enc;
-  std::vector<int32_t> work(q);  // the walker reads q through the same pointer in both modes
-  walk_frames(model, trav, p, options, enc, work.data());
+  AdaptiveIntCoder ints(kContexts);
+  std::vector<int32_t> work(q);  // the walker takes a mutable pointer, shared with decoding
+  walk_frames<false>(model, trav, p, options, work.data(), [&](int ctx, int64_t* r) {
+    ints.encode(enc, ctx, *r);
+    return true;
+  });
   const std::vector<uint8_t>& stream = enc.finish();
   w.varint(stream.size());
   w.bytes(stream.data(), stream.size());
@@ -170,10 +172,31 @@ bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* 
   const Traversal trav = build_traversal(model);
   q->assign(total, 0);
   RangeDecoder dec(stream, size_t(stream_size));
-  if (!walk_frames(model, trav, plan, options, dec, q->data()) || dec.overrun())
+  AdaptiveIntCoder ints(kContexts);
+  const bool ok = walk_frames<true>(model, trav, plan, options, q->data(), [&](int ctx, int64_t* r) {
+    *r = ints.decode(dec, ctx);
+    return !dec.overrun();
+  });
+  if (!ok || dec.overrun())
     return fail(error, "residual stream is truncated or decodes out of range");
   if (values_checksum(*q) != checksum) return fail(error, "residual stream is corrupted (checksum mismatch)");
   return true;
+}
+
+}  // namespace dcurve
+
+namespace dcurve {
+
+std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
+                                     const ResidualOptions& options) {
+  std::vector<int64_t> out;
+  out.reserve(q.size());
+  std::vector<int32_t> work(q);
+  walk_frames<false>(model, build_traversal(model), plan, options, work.data(), [&](int, int64_t* r) {
+    out.push_back(*r);
+    return true;
+  });
+  return out;
 }
 
 }  // namespace dcurve

@@ -36,4 +36,9 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
 bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
                       const ResidualOptions& options = {});
 
+// The residuals encode_residuals would code, in coding order (frame, traversal position,
+// axis): for measuring the entropy coder against general-purpose compressors.
+std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
+                                     const ResidualOptions& options = {});
+
 }  // namespace dcurve
