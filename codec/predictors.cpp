@@ -28,6 +28,48 @@ void adjacency(const std::vector<uint32_t>& faces, uint32_t V, std::vector<uint3
   for (size_t i = 0; i < edges.size(); ++i) (*adj)[i] = uint32_t(edges[i]);
 }
 
+// For every face (v, a, b) whose a and b precede v, and every face (a, b, c) across that
+// edge whose c precedes v: the parallelogram (a, b, c) of v.
+void add_parallelograms(const std::vector<uint32_t>& faces, const std::vector<uint32_t>& pos, Traversal* t) {
+  struct Corner {
+    uint64_t edge;  // (min, max) vertex ids of the edge the corner faces
+    uint32_t vertex;
+  };
+  std::vector<Corner> corners;
+  corners.reserve(faces.size());
+  auto key = [](uint64_t a, uint64_t b) { return a < b ? a << 32 | b : b << 32 | a; };
+  for (size_t f = 0; f + 2 < faces.size(); f += 3)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = faces[f + size_t(k)], a = faces[f + size_t((k + 1) % 3)], b = faces[f + size_t((k + 2) % 3)];
+      corners.push_back({key(a, b), v});
+    }
+  std::sort(corners.begin(), corners.end(),
+            [](const Corner& x, const Corner& y) { return x.edge != y.edge ? x.edge < y.edge : x.vertex < y.vertex; });
+  const uint32_t V = uint32_t(pos.size());
+  std::vector<std::vector<uint32_t>> per_vertex(V);
+  for (size_t i = 0; i < corners.size();) {
+    size_t j = i;
+    while (j < corners.size() && corners[j].edge == corners[i].edge) ++j;
+    const uint32_t a = uint32_t(corners[i].edge >> 32), b = uint32_t(corners[i].edge);
+    for (size_t x = i; x < j; ++x) {
+      const uint32_t v = corners[x].vertex;
+      if (v == a || v == b || pos[a] >= pos[v] || pos[b] >= pos[v]) continue;
+      for (size_t y = i; y < j; ++y) {
+        const uint32_t c = corners[y].vertex;
+        if (c == v || c == a || c == b || pos[c] >= pos[v]) continue;
+        per_vertex[v].insert(per_vertex[v].end(), {a, b, c});
+      }
+    }
+    i = j;
+  }
+  t->para_offsets.assign(size_t(V) + 1, 0);
+  for (uint32_t i = 0; i < V; ++i) {
+    const auto& list = per_vertex[t->order[i]];
+    t->para.insert(t->para.end(), list.begin(), list.end());
+    t->para_offsets[i + 1] = uint32_t(t->para.size() / 3);
+  }
+}
+
 Traversal traversal_from_faces(const Model& m) {
   const uint32_t V = m.meta.vertex_count;
   std::vector<uint32_t> off, adj;
@@ -60,6 +102,7 @@ Traversal traversal_from_faces(const Model& m) {
       if (pos[adj[k]] < i) t.nb.push_back(adj[k]);
     t.nb_offsets[i + 1] = uint32_t(t.nb.size());
   }
+  add_parallelograms(m.faces, pos, &t);
   return t;
 }
 
@@ -68,10 +111,13 @@ Traversal traversal_from_curves(const Model& m) {
   const Curves& c = m.curves;
   t.order = c.vertices;
   t.nb_offsets.assign(t.order.size() + 1, 0);
+  t.para_offsets.assign(t.order.size() + 1, 0);
   for (uint32_t k = 0; k < c.curve_count(); ++k)
     for (uint32_t i = c.offsets[k]; i < c.offsets[k + 1]; ++i) {
       if (i > c.offsets[k]) t.nb.push_back(c.vertices[i - 1]);
+      if (i > c.offsets[k] + 1) t.para.insert(t.para.end(), {c.vertices[i - 1], c.vertices[i - 1], c.vertices[i - 2]});
       t.nb_offsets[i + 1] = uint32_t(t.nb.size());
+      t.para_offsets[i + 1] = uint32_t(t.para.size() / 3);
     }
   return t;
 }

@@ -20,13 +20,22 @@ enum class PredictorKind : uint8_t {
 };
 constexpr uint8_t kPredictorKindCount = 4;
 
+// Spatial correction added to the base prediction, from vertices of the same frame that
+// are already decoded: the error the base prediction made on them is assumed to repeat.
+enum class SpatialMode : uint8_t {
+  Off = 0,
+  Mean = 1,           // rounded mean of the earlier neighbours' errors (Dynapack-style)
+  Parallelogram = 2,  // rounded mean over the vertex's decoded parallelograms (a, b, c) of
+                      // err(a) + err(b) - err(c): exact for any affine motion of the patch;
+                      // Mean where the vertex has no parallelogram
+};
+constexpr uint8_t kSpatialModeCount = 3;
+
 // The predictor of one (frame, axis).
 struct PredictorChoice {
   PredictorKind kind = PredictorKind::Reference;
   uint32_t ref_distance = 1;  // Reference only: 1 <= d <= f
-  // Adds the rounded mean of the already-decoded neighbours' errors of the base prediction
-  // (Dynapack-style): motion shared by a neighbourhood is predicted, only its variation is coded.
-  bool neighbours = true;
+  SpatialMode spatial = SpatialMode::Parallelogram;
 };
 
 // Order in which vertices are decoded within a frame and, for each position, the
@@ -35,12 +44,18 @@ struct Traversal {
   std::vector<uint32_t> order;       // V vertex ids
   std::vector<uint32_t> nb_offsets;  // V + 1; position i's earlier neighbours: nb[nb_offsets[i], nb_offsets[i+1])
   std::vector<uint32_t> nb;          // vertex ids
+  // Position i's parallelograms: para[3 * k .. 3 * k + 2] = (a, b, c) for k in
+  // [para_offsets[i], para_offsets[i+1]); all three decoded before position i.
+  std::vector<uint32_t> para_offsets;
+  std::vector<uint32_t> para;
   bool from_faces = false;
 };
 
 // Builds the traversal: breadth-first over the mesh edges when `model.faces` is present
-// (each component from its lowest vertex id), else along the curves (a vertex's earlier
-// neighbour is the previous vertex of its curve). Needs a validated model.
+// (each component from its lowest vertex id; parallelograms are a face (v, a, b) and the
+// face across edge (a, b)), else along the curves (the earlier neighbour is the previous
+// vertex of the curve, the parallelogram (p1, p1, p2) extrapolates linearly along it).
+// Needs a validated model.
 Traversal build_traversal(const Model& model);
 
 // Extra inputs to the residual layer that are not in the payload.
@@ -58,20 +73,45 @@ bool predictor_usable(const PredictorChoice& c, uint32_t f, const ResidualOption
 void base_prediction(const PredictorChoice& c, uint32_t f, int axis, uint32_t V, const int32_t* q,
                      const ResidualOptions& options, int64_t* base);
 
-// Rounded mean of (qf[n*3+axis] - base[n]) over the earlier neighbours of traversal
-// position `pos`; 0 when it has none. qf is frame f's values (earlier positions decoded).
-inline int64_t neighbour_correction(const Traversal& t, uint32_t pos, int axis, const int32_t* qf,
-                                    const int64_t* base) {
+namespace detail {
+// floor((2 sum + count) / (2 count)): the mean rounded half up, identical on every platform.
+inline int64_t rounded_mean(int64_t sum, int64_t count) {
+  const int64_t num = 2 * sum + count, den = 2 * count;
+  return num >= 0 ? num / den : -((-num + den - 1) / den);
+}
+}  // namespace detail
+
+// The spatial correction of traversal position `pos` on `axis`: see SpatialMode. qf is
+// frame f's values (earlier positions decoded), base the base prediction of that axis.
+inline int64_t spatial_correction(SpatialMode mode, const Traversal& t, uint32_t pos, int axis,
+                                  const int32_t* qf, const int64_t* base) {
+  if (mode == SpatialMode::Off) return 0;
+  auto err = [&](uint32_t n) { return int64_t(qf[size_t(n) * 3 + size_t(axis)]) - base[n]; };
+  if (mode == SpatialMode::Parallelogram) {
+    const uint32_t begin = t.para_offsets[pos], end = t.para_offsets[pos + 1];
+    if (begin != end) {
+      int64_t sum = 0;
+      for (uint32_t k = begin; k < end; ++k)
+        sum += err(t.para[3 * size_t(k)]) + err(t.para[3 * size_t(k) + 1]) - err(t.para[3 * size_t(k) + 2]);
+      return detail::rounded_mean(sum, int64_t(end - begin));
+    }
+  }
   const uint32_t begin = t.nb_offsets[pos], end = t.nb_offsets[pos + 1];
   if (begin == end) return 0;
   int64_t sum = 0;
-  for (uint32_t k = begin; k < end; ++k) {
-    const uint32_t n = t.nb[k];
-    sum += int64_t(qf[size_t(n) * 3 + size_t(axis)]) - base[n];
+  for (uint32_t k = begin; k < end; ++k) sum += err(t.nb[k]);
+  return detail::rounded_mean(sum, int64_t(end - begin));
+}
+
+// Predictions (grid units) of the three axes of traversal position `pos`: base holds the
+// three axes' base predictions (3 * V, axis-major), qf the frame's values decoded so far.
+inline void vertex_prediction(const PredictorChoice* choice, const Traversal& t, uint32_t pos, uint32_t V,
+                              const int32_t* qf, const int64_t* base, int64_t pred[3]) {
+  const uint32_t v = t.order[pos];
+  for (int a = 0; a < 3; ++a) {
+    const int64_t* ba = base + size_t(a) * V;
+    pred[a] = ba[v] + spatial_correction(choice[a].spatial, t, pos, a, qf, ba);
   }
-  // floor((2 sum + count) / (2 count)): round half up, identical on every platform.
-  const int64_t count = int64_t(end - begin), num = 2 * sum + count, den = 2 * count;
-  return num >= 0 ? num / den : -((-num + den - 1) / den);
 }
 
 }  // namespace dcurve

@@ -11,7 +11,8 @@ namespace dcurve {
 namespace {
 
 constexpr uint8_t kFormatVersion = 1;
-constexpr uint8_t kNeighbourFlag = 0x80;
+// A plan entry byte: predictor kind in bits 0-3, spatial mode in bits 4-5.
+constexpr int kSpatialShift = 4;
 
 // Context of a residual: how large the residuals around it already were. Neighbours in
 // this frame (7 classes, the last one for "no decoded neighbour"), the same vertex and
@@ -47,10 +48,10 @@ bool walk_frames(const Model& model, const Traversal& trav, const PredictorPlan&
       const uint32_t v = trav.order[pos];
       const uint32_t nb_begin = trav.nb_offsets[pos], nb_end = trav.nb_offsets[pos + 1];
       uint32_t axis_max = 0;
+      int64_t preds[3];
+      vertex_prediction(choice, trav, pos, V, qf, base.data(), preds);
       for (int a = 0; a < 3; ++a) {
-        const int64_t* ba = &base[size_t(a) * V];
-        int64_t pred = ba[v];
-        if (choice[a].neighbours) pred += neighbour_correction(trav, pos, a, qf, ba);
+        const int64_t pred = preds[a];
         int nb_class = kNeighbourClasses - 1;
         if (nb_begin != nb_end) {
           uint32_t sum = 0;
@@ -120,7 +121,7 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
   w.u8(trav.from_faces ? 1 : 0);
   w.u32(values_checksum(q));
   for (const PredictorChoice& c : p) {
-    w.u8(uint8_t(uint8_t(c.kind) | (c.neighbours ? kNeighbourFlag : 0)));
+    w.u8(uint8_t(uint8_t(c.kind) | uint8_t(c.spatial) << kSpatialShift));
     if (c.kind == PredictorKind::Reference) w.varint(c.ref_distance);
   }
   RangeEncoder enc;
@@ -136,36 +137,56 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
   return std::move(w.data());
 }
 
-bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
-                      const ResidualOptions& options) {
-  const uint32_t V = model.meta.vertex_count, F = model.meta.frame_count;
-  const size_t total = size_t(V) * 3 * F;
-  if (options.model_prediction && options.model_prediction->size() != total)
-    return fail(error, "model prediction has the wrong number of values");
-  ByteReader r(model.residual.payload.data(), model.residual.payload.size());
+namespace {
+// Reads the payload's header and predictor table, leaving `r` at the stream length.
+bool read_header(const Model& model, const ResidualOptions& options, ByteReader& r, PredictorPlan* plan,
+                 uint32_t* checksum, std::string* error) {
+  const uint32_t F = model.meta.frame_count;
   const uint8_t version = r.u8();
   const uint8_t from_faces = r.u8();
-  const uint32_t checksum = r.u32();
+  *checksum = r.u32();
   if (!r.ok) return fail(error, "residual stream is truncated");
   if (version != kFormatVersion) return fail(error, "residual stream version " + std::to_string(version) + " is not supported");
   if (from_faces != (model.faces.empty() ? 0 : 1))
     return fail(error, "residual stream was coded with a different neighbour structure (faces present or not)");
-  PredictorPlan plan(size_t(F) * 3);
-  for (size_t i = 0; i < plan.size(); ++i) {
+  plan->assign(size_t(F) * 3, PredictorChoice());
+  for (size_t i = 0; i < plan->size(); ++i) {
+    PredictorChoice& c = (*plan)[i];
     const uint8_t b = r.u8();
-    const uint8_t kind = b & uint8_t(~kNeighbourFlag);
-    if (!r.ok || kind >= kPredictorKindCount) return fail(error, "residual predictor table is malformed");
-    plan[i].kind = PredictorKind(kind);
-    plan[i].neighbours = (b & kNeighbourFlag) != 0;
-    if (plan[i].kind == PredictorKind::Reference) {
+    const uint8_t kind = b & 0x0F, spatial = uint8_t(b >> kSpatialShift);
+    if (!r.ok || kind >= kPredictorKindCount || spatial >= kSpatialModeCount)
+      return fail(error, "residual predictor table is malformed");
+    c.kind = PredictorKind(kind);
+    c.spatial = SpatialMode(spatial);
+    if (c.kind == PredictorKind::Reference) {
       const uint64_t d = r.varint();
-      plan[i].ref_distance = d > UINT32_MAX ? 0 : uint32_t(d);
+      c.ref_distance = d > UINT32_MAX ? 0 : uint32_t(d);
     }
-    if (!r.ok || !predictor_usable(plan[i], uint32_t(i / 3), options))
-      return fail(error, plan[i].kind == PredictorKind::Model && r.ok
+    if (!r.ok || !predictor_usable(c, uint32_t(i / 3), options))
+      return fail(error, c.kind == PredictorKind::Model && r.ok
                              ? "residual stream needs the motion model prediction, which was not supplied"
                              : "residual predictor table refers to an unavailable frame");
   }
+  return true;
+}
+}  // namespace
+
+bool decode_predictor_plan(const Model& model, PredictorPlan* plan, std::string* error,
+                           const ResidualOptions& options) {
+  ByteReader r(model.residual.payload.data(), model.residual.payload.size());
+  uint32_t checksum;
+  return read_header(model, options, r, plan, &checksum, error);
+}
+
+bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
+                      const ResidualOptions& options) {
+  const size_t total = size_t(model.meta.vertex_count) * 3 * model.meta.frame_count;
+  if (options.model_prediction && options.model_prediction->size() != total)
+    return fail(error, "model prediction has the wrong number of values");
+  ByteReader r(model.residual.payload.data(), model.residual.payload.size());
+  PredictorPlan plan;
+  uint32_t checksum;
+  if (!read_header(model, options, r, &plan, &checksum, error)) return false;
   const uint64_t stream_size = r.varint();
   if (!r.ok || stream_size != r.remaining()) return fail(error, "residual stream length does not match the payload");
   const uint8_t* stream = r.take(size_t(stream_size));
@@ -182,10 +203,6 @@ bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* 
   if (values_checksum(*q) != checksum) return fail(error, "residual stream is corrupted (checksum mismatch)");
   return true;
 }
-
-}  // namespace dcurve
-
-namespace dcurve {
 
 std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
                                      const ResidualOptions& options) {

@@ -36,6 +36,15 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
 bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
                       const ResidualOptions& options = {});
 
+// Reads only the predictor table of model.residual.payload (for reports and tools).
+bool decode_predictor_plan(const Model& model, PredictorPlan* plan, std::string* error,
+                           const ResidualOptions& options = {});
+
+// Grid value -> model units, exactly as the decoder converts it (float32 output).
+inline float grid_to_model(const ResidualLayer& layer, int axis, int64_t value) {
+  return float(layer.origin[axis] + layer.step * double(value));
+}
+
 // The residuals encode_residuals would code, in coding order (frame, traversal position,
 // axis): for measuring the entropy coder against general-purpose compressors.
 std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,

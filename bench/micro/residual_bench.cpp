@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 #include <zstd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -60,10 +61,16 @@ const Case* load(const std::string& seq, double tol) {
   if (!read_container(file.data(), file.size(), &c.model, &err) || !decode_residuals(c.model, &c.q, &err))
     return nullptr;
   const size_t n = size_t(c.model.meta.vertex_count) * 3;
-  std::vector<int64_t> delta(c.q.size());
-  for (size_t i = 0; i < c.q.size(); ++i) delta[i] = int64_t(c.q[i]) - (i >= n ? c.q[i - n] : 0);
+  // The thin path's values: every position rounded to the nearest grid point.
+  std::vector<int64_t> rounded(c.q.size()), delta(c.q.size());
+  const ResidualLayer& layer = c.model.residual;
+  for (size_t i = 0; i < c.q.size(); ++i)
+    rounded[i] = int64_t(std::nearbyint((double(anim.frames[i / n][i % n]) - layer.origin[i % 3]) / layer.step));
+  for (size_t i = 0; i < c.q.size(); ++i) delta[i] = rounded[i] - (i >= n ? rounded[i - n] : 0);
   c.delta_zstd = varint_zstd(delta);
-  c.plan_zstd = varint_zstd(residual_values(c.model, c.q, choose_predictor_plan(c.model, c.q)));
+  PredictorPlan plan;
+  if (!decode_predictor_plan(c.model, &plan, &err)) return nullptr;
+  c.plan_zstd = varint_zstd(residual_values(c.model, c.q, plan));
   return &cache.emplace(key, std::move(c)).first->second;
 }
 

@@ -15,6 +15,8 @@ struct ResidualPlanOptions {
   uint32_t extra_references = 3;
   // How far back reference frames are searched, frames, >= 1.
   uint32_t max_reference_distance = 1024;
+  // Choose grid values within the tolerance (true) or keep the rounded ones (false).
+  bool snap = true;
 };
 
 // Estimated cost, bits, of coding `residuals` with an adaptive integer coder: their
@@ -22,10 +24,19 @@ struct ResidualPlanOptions {
 // predictors, not to predict file sizes exactly.
 double estimate_residual_bits(const std::vector<int64_t>& residuals);
 
-// Picks the plan for model (counts, faces, curves as encode_residuals will see them) and
-// grid values q (frame-major). Deterministic; cost O(F * candidates * (V + edges)).
-PredictorPlan choose_predictor_plan(const Model& model, const std::vector<int32_t>& q,
-                                    const ResidualOptions& options = {},
-                                    const ResidualPlanOptions& plan_options = {});
+// Chooses the predictor of every frame (the same for its three axes) and, when
+// plan_options.snap is set, the grid values themselves: of the grid points whose decoded
+// position lies within max_distance of the input vertex, the one cheapest to code against
+// its prediction (the decoder reproduces any grid value exactly, so the error bound holds
+// by construction). Frames are walked in coding order, so predictions see chosen values.
+//   frames: input positions, model units, one V * 3 vector per frame.
+//   max_distance: model units (tolerance * L), > 0.
+//   q: in, the rounded grid values (frame-major, within max_distance); out, the chosen ones.
+// model supplies counts, faces, curves and the grid (model.residual step and origin).
+// Deterministic; cost O(F * candidates * (V + edges)).
+PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
+                                   double max_distance, std::vector<int32_t>* q,
+                                   const ResidualOptions& options = {},
+                                   const ResidualPlanOptions& plan_options = {});
 
 }  // namespace dcurve
