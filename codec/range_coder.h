@@ -1,7 +1,7 @@
 // Adaptive binary range coder: the entropy coder of the residual layer. Each binary
 // decision is coded with a probability that adapts to what was coded before in the same
 // context, so skewed, slowly changing residual statistics cost close to their entropy.
-// 32-bit range, 12-bit probabilities, carry handled with a cached byte and a run of 0xFF.
+// 32-bit range, 12-bit coding probabilities, carry handled with a cached byte and a run of 0xFF.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -9,13 +9,25 @@
 
 namespace dcurve {
 
-// Probability, in 1/4096 units, that the next bit in this context is 0. Starts at one half.
+// Probability that the next bit in this context is 0, kept at two adaptation speeds
+// (fast follows local changes, slow gives precision on stationary statistics); their
+// mean, in 1/4096 units, codes the bit. Both start at one half.
 struct BitModel {
-  uint16_t p0 = 2048;
+  uint16_t fast = 1u << 15, slow = 1u << 15;  // 1/65536 units
+  uint32_t p0() const { return ((uint32_t(fast) + slow) >> 5) | 1u; }  // in [1, 4095]
+  void update(int bit) {
+    if (bit == 0) {
+      fast = uint16_t(fast + ((65536u - fast) >> kFastShift));
+      slow = uint16_t(slow + ((65536u - slow) >> kSlowShift));
+    } else {
+      fast = uint16_t(fast - (fast >> kFastShift));
+      slow = uint16_t(slow - (slow >> kSlowShift));
+    }
+  }
+  static constexpr int kFastShift = 4, kSlowShift = 7;
 };
 
 constexpr int kProbBits = 12;
-constexpr int kAdaptShift = 4;  // faster than LZMA's 5: residual contexts see few symbols
 
 class RangeEncoder {
  public:
@@ -40,8 +52,10 @@ class RangeDecoder {
   int decode(BitModel& m);
   // True when the decoder needed more bytes than the stream holds.
   bool overrun() const { return overrun_; }
-  // Bytes consumed so far; equals the stream size after decoding a whole, intact stream.
-  size_t consumed() const { return pos_; }
+  // After the last symbol of an intact stream: every byte read, and the code register
+  // equal to the encoder's final low (the flush writes it out exactly), so corruption of
+  // the tail is caught too.
+  bool at_clean_end() const { return !overrun_ && pos_ == size_ && code_ == 0; }
 
  private:
   uint8_t next_byte();
@@ -52,15 +66,14 @@ class RangeDecoder {
 };
 
 inline void RangeEncoder::encode(BitModel& m, int bit) {
-  const uint32_t bound = (range_ >> kProbBits) * m.p0;
+  const uint32_t bound = (range_ >> kProbBits) * m.p0();
   if (bit == 0) {
     range_ = bound;
-    m.p0 = uint16_t(m.p0 + (((1u << kProbBits) - m.p0) >> kAdaptShift));
   } else {
     low_ += bound;
     range_ -= bound;
-    m.p0 = uint16_t(m.p0 - (m.p0 >> kAdaptShift));
   }
+  m.update(bit);
   while (range_ < (1u << 24)) {
     range_ <<= 8;
     shift_low();
@@ -74,18 +87,17 @@ inline uint8_t RangeDecoder::next_byte() {
 }
 
 inline int RangeDecoder::decode(BitModel& m) {
-  const uint32_t bound = (range_ >> kProbBits) * m.p0;
+  const uint32_t bound = (range_ >> kProbBits) * m.p0();
   int bit;
   if (code_ < bound) {
     range_ = bound;
-    m.p0 = uint16_t(m.p0 + (((1u << kProbBits) - m.p0) >> kAdaptShift));
     bit = 0;
   } else {
     code_ -= bound;
     range_ -= bound;
-    m.p0 = uint16_t(m.p0 - (m.p0 >> kAdaptShift));
     bit = 1;
   }
+  m.update(bit);
   while (range_ < (1u << 24)) {
     range_ <<= 8;
     code_ = (code_ << 8) | next_byte();

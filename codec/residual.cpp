@@ -115,6 +115,9 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
   const uint32_t F = model.meta.frame_count;
   const PredictorPlan fallback = plan ? PredictorPlan() : default_predictor_plan(F);
   const PredictorPlan& p = plan ? *plan : fallback;
+  if (p.size() != size_t(F) * 3) return {};
+  for (size_t i = 0; i < p.size(); ++i)
+    if (!predictor_usable(p[i], uint32_t(i / 3), options)) return {};
   const Traversal trav = build_traversal(model);
   ByteWriter w;
   w.u8(kFormatVersion);
@@ -198,8 +201,8 @@ bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* 
     *r = ints.decode(dec, ctx);
     return !dec.overrun();
   });
-  if (!ok || dec.overrun())
-    return fail(error, "residual stream is truncated or decodes out of range");
+  if (!ok || !dec.at_clean_end())
+    return fail(error, "residual stream is truncated, corrupted or decodes out of range");
   if (values_checksum(*q) != checksum) return fail(error, "residual stream is corrupted (checksum mismatch)");
   return true;
 }

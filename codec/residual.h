@@ -25,7 +25,7 @@ PredictorPlan default_predictor_plan(uint32_t frame_count);
 // `model` into a payload for model.residual.payload. `model` supplies counts, faces (the
 // neighbour structure; leave them empty when the file will not store them) and curves.
 // `plan` (frame_count * 3 entries, each usable per predictor_usable) picks the predictors;
-// null means default_predictor_plan.
+// null means default_predictor_plan. An unusable plan is a caller bug: returns empty.
 std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
                                       const PredictorPlan* plan = nullptr,
                                       const ResidualOptions& options = {});

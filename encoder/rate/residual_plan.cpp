@@ -119,13 +119,16 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
   for (uint32_t f = 0; f < F; ++f) {
     std::vector<PredictorChoice> candidates;
     auto add = [&](PredictorKind kind, uint32_t d) {
+      if (!(po.kinds >> int(kind) & 1)) return;
       for (SpatialMode s : {SpatialMode::Off, SpatialMode::Mean, SpatialMode::Parallelogram})
-        candidates.push_back({kind, d, s});
+        if (po.spatial_modes >> int(s) & 1) candidates.push_back({kind, d, s});
     };
-    if (f == 0) add(PredictorKind::None, 1);
+    add(PredictorKind::None, 1);  // after a cut, a frame may be best predicted from itself alone
     for (uint32_t d : reference_candidates(*q, V, f, po)) add(PredictorKind::Reference, d);
     if (f >= 2) add(PredictorKind::SecondOrder, 1);
     if (options.model_prediction) add(PredictorKind::Model, 1);
+    if (candidates.empty())
+      candidates.push_back({f == 0 ? PredictorKind::None : PredictorKind::Reference, 1, SpatialMode::Off});
     int32_t* qf = q->data() + size_t(f) * stride;
     double best = HUGE_VAL;
     for (const PredictorChoice& c : candidates) {

@@ -17,6 +17,11 @@ struct ResidualPlanOptions {
   uint32_t max_reference_distance = 1024;
   // Choose grid values within the tolerance (true) or keep the rounded ones (false).
   bool snap = true;
+  // Candidate predictors: bit (1 << PredictorKind) and bit (1 << SpatialMode) allowed.
+  // Frames no allowed kind can serve (frame 0 without None or Model, frame 1 without
+  // Reference...) fall back to Reference d = 1, or None on frame 0. For tests and studies.
+  uint32_t kinds = ~0u;
+  uint32_t spatial_modes = ~0u;
 };
 
 // Estimated cost, bits, of coding `residuals` with an adaptive integer coder: their
