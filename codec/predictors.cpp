@@ -128,11 +128,15 @@ Traversal build_traversal(const Model& model) {
   return model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);
 }
 
-bool predictor_usable(const PredictorChoice& c, uint32_t f, const ResidualOptions& options) {
+bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
+                      const ResidualOptions& options) {
+  auto ok = [&](uint32_t r) { return r < decoded.size() && r != f && decoded[r]; };
+  auto near = [](uint32_t a, uint32_t b) { return (a > b ? a - b : b - a) <= kMaxLinearSpan; };
   switch (c.kind) {
     case PredictorKind::None: return true;
-    case PredictorKind::Reference: return c.ref_distance >= 1 && c.ref_distance <= f;
-    case PredictorKind::SecondOrder: return f >= 2;
+    case PredictorKind::Reference: return ok(c.r0);
+    case PredictorKind::Linear:
+      return ok(c.r0) && ok(c.r1) && c.r0 != c.r1 && near(c.r0, f) && near(c.r1, c.r0);
     case PredictorKind::Model: return options.model_prediction != nullptr;
   }
   return false;
@@ -146,14 +150,19 @@ void base_prediction(const PredictorChoice& c, uint32_t f, int axis, uint32_t V,
       std::fill(base, base + V, int64_t(0));
       return;
     case PredictorKind::Reference: {
-      const int32_t* r = q + size_t(f - c.ref_distance) * stride;
+      const int32_t* r = q + size_t(c.r0) * stride;
       for (uint32_t v = 0; v < V; ++v) base[v] = r[size_t(v) * 3 + a];
       return;
     }
-    case PredictorKind::SecondOrder: {
-      const int32_t* p1 = q + size_t(f - 1) * stride;
-      const int32_t* p2 = q + size_t(f - 2) * stride;
-      for (uint32_t v = 0; v < V; ++v) base[v] = 2 * int64_t(p1[size_t(v) * 3 + a]) - p2[size_t(v) * 3 + a];
+    case PredictorKind::Linear: {
+      const int32_t* p0 = q + size_t(c.r0) * stride;
+      const int32_t* p1 = q + size_t(c.r1) * stride;
+      int64_t t = int64_t(f) - int64_t(c.r0), span = int64_t(c.r1) - int64_t(c.r0);
+      if (span < 0) { span = -span; t = -t; }
+      for (uint32_t v = 0; v < V; ++v) {
+        const int64_t y0 = p0[size_t(v) * 3 + a], y1 = p1[size_t(v) * 3 + a];
+        base[v] = y0 + detail::rounded_mean((y1 - y0) * t, span);
+      }
       return;
     }
     case PredictorKind::Model: {

@@ -10,13 +10,15 @@
 
 namespace dcurve {
 
-// Base prediction of frame f, per vertex and axis, from earlier frames.
+// Base prediction of frame f, per vertex and axis, from frames decoded before it (frames
+// are decoded in a coding order that need not be time order, see PredictorPlan).
 enum class PredictorKind : uint8_t {
-  None = 0,         // zero: only useful with neighbour correction (frame 0: spatial prediction)
-  Reference = 1,    // q[f - d][v]: d = 1 is the plain temporal delta; larger d reuses a past pose
-  SecondOrder = 2,  // 2 q[f-1][v] - q[f-2][v]: constant velocity
-  Model = 3,        // a grid prediction the caller supplies (the PDE motion model, evaluated
-                    // on the grid by the integrator); both sides must supply the same values
+  None = 0,       // zero: only useful with a spatial correction (a frame predicted from itself)
+  Reference = 1,  // q[r0][v]: r0 = f - 1 is the plain temporal delta; other r0 reuse a past pose
+  Linear = 2,     // the line in time through (r0, q[r0][v]) and (r1, q[r1][v]), at f, rounded:
+                  // r0 = f-1, r1 = f-2 is constant velocity; r0 < f < r1 interpolates
+  Model = 3,      // a grid prediction the caller supplies (the PDE motion model, evaluated
+                  // on the grid by the integrator); both sides must supply the same values
 };
 constexpr uint8_t kPredictorKindCount = 4;
 
@@ -34,9 +36,13 @@ constexpr uint8_t kSpatialModeCount = 3;
 // The predictor of one (frame, axis).
 struct PredictorChoice {
   PredictorKind kind = PredictorKind::Reference;
-  uint32_t ref_distance = 1;  // Reference only: 1 <= d <= f
+  uint32_t r0 = 0, r1 = 0;  // reference frames: Reference uses r0, Linear r0 and r1
   SpatialMode spatial = SpatialMode::Parallelogram;
 };
+
+// Linear references lie within this many frames of f and of each other, so the integer
+// interpolation cannot overflow.
+constexpr uint32_t kMaxLinearSpan = 65535;
 
 // Order in which vertices are decoded within a frame and, for each position, the
 // neighbours that come earlier in that order (the ones a decoder already knows).
@@ -65,11 +71,14 @@ struct ResidualOptions {
   const std::vector<int32_t>* model_prediction = nullptr;
 };
 
-// Whether `c` can be used for frame f (refers only to earlier frames and supplied data).
-bool predictor_usable(const PredictorChoice& c, uint32_t f, const ResidualOptions& options);
+// Whether `c` can be used for frame f: its reference frames are decoded (decoded[r] != 0,
+// decoded has frame_count entries) and distinct from f, Linear spans are bounded, supplied
+// data is present.
+bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
+                      const ResidualOptions& options);
 
 // Writes the base prediction of frame f, axis a for every vertex into base[v] (grid units).
-// q holds at least frames [0, f) frame-major with V vertices; the choice must be usable.
+// q is frame-major with V vertices and holds the referenced frames; the choice must be usable.
 void base_prediction(const PredictorChoice& c, uint32_t f, int axis, uint32_t V, const int32_t* q,
                      const ResidualOptions& options, int64_t* base);
 

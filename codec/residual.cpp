@@ -36,12 +36,12 @@ uint32_t clamp_abs(int64_t r) {
 template <bool kDecode, class Step>
 bool walk_frames(const Model& model, const Traversal& trav, const PredictorPlan& plan,
                  const ResidualOptions& options, int32_t* q, Step step) {
-  const uint32_t V = model.meta.vertex_count, F = model.meta.frame_count;
+  const uint32_t V = model.meta.vertex_count;
   const size_t stride = size_t(V) * 3;
   std::vector<int64_t> base(stride);
   std::vector<uint32_t> cur_abs(stride, 0), prev_abs(stride, 0);
-  for (uint32_t f = 0; f < F; ++f) {
-    const PredictorChoice* choice = &plan[size_t(f) * 3];
+  for (uint32_t f : plan.order) {
+    const PredictorChoice* choice = &plan.choices[size_t(f) * 3];
     for (int a = 0; a < 3; ++a) base_prediction(choice[a], f, a, V, q, options, &base[size_t(a) * V]);
     int32_t* qf = q + size_t(f) * stride;
     for (uint32_t pos = 0; pos < V; ++pos) {
@@ -105,27 +105,63 @@ bool fail(std::string* error, const std::string& msg) {
 }  // namespace
 
 PredictorPlan default_predictor_plan(uint32_t frame_count) {
-  PredictorPlan plan(size_t(frame_count) * 3);
-  for (int a = 0; a < 3 && frame_count > 0; ++a) plan[size_t(a)].kind = PredictorKind::None;
+  PredictorPlan plan;
+  plan.choices.resize(size_t(frame_count) * 3);
+  for (uint32_t f = 0; f < frame_count; ++f) {
+    plan.order.push_back(f);
+    for (int a = 0; a < 3; ++a) {
+      PredictorChoice& c = plan.choices[size_t(f) * 3 + size_t(a)];
+      if (f == 0) c.kind = PredictorKind::None;
+      else c.r0 = f - 1;
+    }
+  }
   return plan;
 }
+
+bool plan_is_valid(const PredictorPlan& plan, uint32_t F, const ResidualOptions& options) {
+  if (plan.order.size() != F || plan.choices.size() != size_t(F) * 3) return false;
+  std::vector<uint8_t> decoded(F, 0);
+  for (uint32_t f : plan.order) {
+    if (f >= F || decoded[f]) return false;
+    for (int a = 0; a < 3; ++a)
+      if (!predictor_usable(plan.choices[size_t(f) * 3 + size_t(a)], f, decoded, options)) return false;
+    decoded[f] = 1;
+  }
+  return true;
+}
+
+namespace {
+uint64_t zigzag(int64_t v) { return uint64_t(v << 1) ^ uint64_t(v >> 63); }
+int64_t unzigzag(uint64_t z) { return int64_t(z >> 1) ^ -int64_t(z & 1); }
+// Reference frames are written relative to the frame they serve: small numbers.
+void write_ref(ByteWriter& w, uint32_t f, uint32_t r) { w.varint(zigzag(int64_t(r) - int64_t(f))); }
+uint32_t read_ref(ByteReader& r, uint32_t f) {
+  const int64_t v = int64_t(f) + unzigzag(r.varint());
+  return v < 0 || v > int64_t(UINT32_MAX) ? UINT32_MAX : uint32_t(v);
+}
+}  // namespace
 
 std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
                                       const PredictorPlan* plan, const ResidualOptions& options) {
   const uint32_t F = model.meta.frame_count;
   const PredictorPlan fallback = plan ? PredictorPlan() : default_predictor_plan(F);
   const PredictorPlan& p = plan ? *plan : fallback;
-  if (p.size() != size_t(F) * 3) return {};
-  for (size_t i = 0; i < p.size(); ++i)
-    if (!predictor_usable(p[i], uint32_t(i / 3), options)) return {};
+  if (!plan_is_valid(p, F, options)) return {};
   const Traversal trav = build_traversal(model);
   ByteWriter w;
   w.u8(kFormatVersion);
   w.u8(trav.from_faces ? 1 : 0);
   w.u32(values_checksum(q));
-  for (const PredictorChoice& c : p) {
-    w.u8(uint8_t(uint8_t(c.kind) | uint8_t(c.spatial) << kSpatialShift));
-    if (c.kind == PredictorKind::Reference) w.varint(c.ref_distance);
+  uint32_t expect = 0;  // time order costs one byte per frame: delta to the expected frame
+  for (uint32_t f : p.order) {
+    write_ref(w, expect, f);
+    expect = f + 1;
+    for (int a = 0; a < 3; ++a) {
+      const PredictorChoice& c = p.choices[size_t(f) * 3 + size_t(a)];
+      w.u8(uint8_t(uint8_t(c.kind) | uint8_t(c.spatial) << kSpatialShift));
+      if (c.kind == PredictorKind::Reference || c.kind == PredictorKind::Linear) write_ref(w, f, c.r0);
+      if (c.kind == PredictorKind::Linear) write_ref(w, f, c.r1);
+    }
   }
   RangeEncoder enc;
   AdaptiveIntCoder ints(kContexts);
@@ -152,23 +188,31 @@ bool read_header(const Model& model, const ResidualOptions& options, ByteReader&
   if (version != kFormatVersion) return fail(error, "residual stream version " + std::to_string(version) + " is not supported");
   if (from_faces != (model.faces.empty() ? 0 : 1))
     return fail(error, "residual stream was coded with a different neighbour structure (faces present or not)");
-  plan->assign(size_t(F) * 3, PredictorChoice());
-  for (size_t i = 0; i < plan->size(); ++i) {
-    PredictorChoice& c = (*plan)[i];
-    const uint8_t b = r.u8();
-    const uint8_t kind = b & 0x0F, spatial = uint8_t(b >> kSpatialShift);
-    if (!r.ok || kind >= kPredictorKindCount || spatial >= kSpatialModeCount)
-      return fail(error, "residual predictor table is malformed");
-    c.kind = PredictorKind(kind);
-    c.spatial = SpatialMode(spatial);
-    if (c.kind == PredictorKind::Reference) {
-      const uint64_t d = r.varint();
-      c.ref_distance = d > UINT32_MAX ? 0 : uint32_t(d);
+  plan->order.clear();
+  plan->choices.assign(size_t(F) * 3, PredictorChoice());
+  std::vector<uint8_t> decoded(F, 0);
+  uint32_t expect = 0;
+  for (uint32_t k = 0; k < F; ++k) {
+    const uint32_t f = read_ref(r, expect);
+    if (!r.ok || f >= F || decoded[f]) return fail(error, "residual frame order is not a permutation of the frames");
+    plan->order.push_back(f);
+    expect = f + 1;
+    for (int a = 0; a < 3; ++a) {
+      PredictorChoice& c = plan->choices[size_t(f) * 3 + size_t(a)];
+      const uint8_t b = r.u8();
+      const uint8_t kind = b & 0x0F, spatial = uint8_t(b >> kSpatialShift);
+      if (!r.ok || kind >= kPredictorKindCount || spatial >= kSpatialModeCount)
+        return fail(error, "residual predictor table is malformed");
+      c.kind = PredictorKind(kind);
+      c.spatial = SpatialMode(spatial);
+      if (c.kind == PredictorKind::Reference || c.kind == PredictorKind::Linear) c.r0 = read_ref(r, f);
+      if (c.kind == PredictorKind::Linear) c.r1 = read_ref(r, f);
+      if (!r.ok || !predictor_usable(c, f, decoded, options))
+        return fail(error, c.kind == PredictorKind::Model && r.ok
+                               ? "residual stream needs the motion model prediction, which was not supplied"
+                               : "residual predictor table refers to an unavailable frame");
     }
-    if (!r.ok || !predictor_usable(c, uint32_t(i / 3), options))
-      return fail(error, c.kind == PredictorKind::Model && r.ok
-                             ? "residual stream needs the motion model prediction, which was not supplied"
-                             : "residual predictor table refers to an unavailable frame");
+    decoded[f] = 1;
   }
   return true;
 }

@@ -14,18 +14,24 @@
 
 namespace dcurve {
 
-// The predictor of every (frame, axis): entry f * 3 + axis.
-using PredictorPlan = std::vector<PredictorChoice>;
+// How frames are coded: in which order, each axis with which predictor.
+struct PredictorPlan {
+  std::vector<uint32_t> order;           // a permutation of [0, frame_count): coding order
+  std::vector<PredictorChoice> choices;  // entry f * 3 + axis (indexed by frame, not position)
+};
 
-// The plan used when the caller has none: frame 0 from its mesh neighbours, every later
-// frame as the previous frame plus the neighbours' mean motion.
+// The plan used when the caller has none: time order, frame 0 from its mesh neighbours,
+// every later frame as the previous frame plus the neighbours' motion.
 PredictorPlan default_predictor_plan(uint32_t frame_count);
+
+// Whether `plan` fits frame_count and every choice refers only to frames coded before it.
+bool plan_is_valid(const PredictorPlan& plan, uint32_t frame_count, const ResidualOptions& options);
 
 // Codes the grid positions `q` (frame_count * vertex_count * 3 values, each an int32) of
 // `model` into a payload for model.residual.payload. `model` supplies counts, faces (the
 // neighbour structure; leave them empty when the file will not store them) and curves.
-// `plan` (frame_count * 3 entries, each usable per predictor_usable) picks the predictors;
-// null means default_predictor_plan. An unusable plan is a caller bug: returns empty.
+// `plan` (plan_is_valid) picks the order and predictors; null means default_predictor_plan.
+// An invalid plan is a caller bug: returns an empty vector.
 std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
                                       const PredictorPlan* plan = nullptr,
                                       const ResidualOptions& options = {});
@@ -45,8 +51,8 @@ inline float grid_to_model(const ResidualLayer& layer, int axis, int64_t value) 
   return float(layer.origin[axis] + layer.step * double(value));
 }
 
-// The residuals encode_residuals would code, in coding order (frame, traversal position,
-// axis): for measuring the entropy coder against general-purpose compressors.
+// The residuals encode_residuals would code, in coding order (frame in plan order,
+// traversal position, axis): for measuring the entropy coder against general-purpose compressors.
 std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
                                      const ResidualOptions& options = {});
 

@@ -63,25 +63,91 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, cons
     if (best[a] >= INT32_MIN && best[a] <= INT32_MAX) qv[a] = int32_t(best[a]);
 }
 
-// Past frames most similar to frame f (sum of absolute grid differences on a sample of
-// values), beyond the two nearest, which are always tried.
-std::vector<uint32_t> reference_candidates(const std::vector<int32_t>& q, uint32_t V, uint32_t f,
-                                           const ResidualPlanOptions& po) {
-  std::vector<uint32_t> refs;
-  for (uint32_t d = 1; d <= std::min<uint32_t>(f, 2); ++d) refs.push_back(d);
+// Decoded frames most similar to frame f (sum of absolute grid differences on a sample
+// of values), other than the ones always tried.
+std::vector<uint32_t> similar_frames(const std::vector<int32_t>& q, uint32_t V, uint32_t f,
+                                     const std::vector<uint8_t>& decoded, const std::vector<uint32_t>& tried,
+                                     const ResidualPlanOptions& po) {
   const size_t stride = size_t(V) * 3, sample = std::max<size_t>(1, stride / 4096);
   std::vector<std::pair<uint64_t, uint32_t>> scored;
-  for (uint32_t d = 3; d <= std::min(f, po.max_reference_distance); ++d) {
+  for (uint32_t r = 0; r < decoded.size(); ++r) {
+    if (!decoded[r] || std::find(tried.begin(), tried.end(), r) != tried.end()) continue;
+    if ((r > f ? r - f : f - r) > po.max_reference_distance) continue;
     const int32_t* a = q.data() + size_t(f) * stride;
-    const int32_t* b = q.data() + size_t(f - d) * stride;
+    const int32_t* b = q.data() + size_t(r) * stride;
     uint64_t sum = 0;
     for (size_t i = 0; i < stride; i += sample) sum += uint64_t(std::llabs(int64_t(a[i]) - b[i]));
-    scored.emplace_back(sum, d);
+    scored.emplace_back(sum, r);
   }
   const size_t keep = std::min<size_t>(po.extra_references, scored.size());
   std::partial_sort(scored.begin(), scored.begin() + std::ptrdiff_t(keep), scored.end());
-  for (size_t k = 0; k < keep; ++k) refs.push_back(scored[k].second);
-  return refs;
+  std::vector<uint32_t> out;
+  for (size_t k = 0; k < keep; ++k) out.push_back(scored[k].second);
+  return out;
+}
+
+// Time order when gop is 1; otherwise every gop-th frame (and the last) in time order,
+// each followed by the frames before it down to the previous key, coded by recursive
+// midpoints so that each is interpolated between two decoded frames.
+std::vector<uint32_t> coding_order(uint32_t F, uint32_t gop) {
+  std::vector<uint32_t> order;
+  if (F == 0) return order;
+  order.push_back(0);
+  struct Range { uint32_t lo, hi; };
+  for (uint32_t key = 0; key + 1 < F;) {
+    const uint32_t next = std::min(F - 1, key + std::max(gop, 1u));
+    order.push_back(next);
+    std::vector<Range> stack{{key, next}};
+    while (!stack.empty()) {
+      const Range r = stack.back();
+      stack.pop_back();
+      if (r.hi - r.lo < 2) continue;
+      const uint32_t mid = r.lo + (r.hi - r.lo) / 2;
+      order.push_back(mid);
+      stack.push_back({mid, r.hi});
+      stack.push_back({r.lo, mid});
+    }
+    key = next;
+  }
+  return order;
+}
+
+// Candidates for frame f given the decoded frames: self (None), nearest decoded frames on
+// each side, interpolation between them, extrapolation from the two nearest before, the
+// most similar decoded poses, the model; each with every allowed spatial mode.
+std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint32_t V, uint32_t f,
+                                            const std::vector<uint8_t>& decoded, const ResidualOptions& options,
+                                            const ResidualPlanOptions& po) {
+  const uint32_t F = uint32_t(decoded.size()), none = UINT32_MAX;
+  uint32_t below = none, below2 = none, above = none;
+  for (uint32_t r = f; r-- > 0;)
+    if (decoded[r]) {
+      if (below == none) below = r;
+      else { below2 = r; break; }
+    }
+  for (uint32_t r = f + 1; r < F; ++r)
+    if (decoded[r]) { above = r; break; }
+  std::vector<PredictorChoice> out;
+  auto add = [&](PredictorKind kind, uint32_t r0, uint32_t r1) {
+    if (!(po.kinds >> int(kind) & 1)) return;
+    for (SpatialMode s : {SpatialMode::Off, SpatialMode::Mean, SpatialMode::Parallelogram}) {
+      const PredictorChoice c{kind, r0, r1, s};
+      if (po.spatial_modes >> int(s) & 1 && predictor_usable(c, f, decoded, options)) out.push_back(c);
+    }
+  };
+  add(PredictorKind::None, 0, 0);
+  std::vector<uint32_t> tried;
+  for (uint32_t r : {below, above})
+    if (r != none) {
+      add(PredictorKind::Reference, r, 0);
+      tried.push_back(r);
+    }
+  if (below != none && above != none) add(PredictorKind::Linear, below, above);
+  if (below != none && below2 != none) add(PredictorKind::Linear, below, below2);
+  for (uint32_t r : similar_frames(q, V, f, decoded, tried, po)) add(PredictorKind::Reference, r, 0);
+  if (options.model_prediction) add(PredictorKind::Model, 0, 0);
+  if (out.empty()) out.push_back({PredictorKind::None, 0, 0, SpatialMode::Off});
+  return out;
 }
 
 }  // namespace
@@ -105,33 +171,24 @@ double estimate_residual_bits(const std::vector<int64_t>& residuals) {
   return bits;
 }
 
-PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
-                                   double max_distance, std::vector<int32_t>* q, const ResidualOptions& options,
-                                   const ResidualPlanOptions& po) {
+namespace {
+
+// Chooses predictors and grid values for one coding order; returns the estimated bits.
+double plan_for_order(const Model& model, const Traversal& trav, const std::vector<std::vector<float>>& frames,
+                      double radius, const std::vector<uint32_t>& order, const ResidualOptions& options,
+                      const ResidualPlanOptions& po, std::vector<int32_t>* q, PredictorPlan* plan) {
   const uint32_t V = model.meta.vertex_count, F = model.meta.frame_count;
   const size_t stride = size_t(V) * 3;
-  const Traversal trav = build_traversal(model);
-  // A hair inside the bound, so rounding in the error measurement cannot push it over.
-  const double radius = max_distance * (1.0 - 1e-9);
-  PredictorPlan plan(size_t(F) * 3);
+  plan->order = order;
+  plan->choices.assign(size_t(F) * 3, PredictorChoice());
+  std::vector<uint8_t> decoded(F, 0);
   std::vector<int64_t> base(stride), residuals(stride);
   std::vector<int32_t> scratch(stride), best_frame(stride);
-  for (uint32_t f = 0; f < F; ++f) {
-    std::vector<PredictorChoice> candidates;
-    auto add = [&](PredictorKind kind, uint32_t d) {
-      if (!(po.kinds >> int(kind) & 1)) return;
-      for (SpatialMode s : {SpatialMode::Off, SpatialMode::Mean, SpatialMode::Parallelogram})
-        if (po.spatial_modes >> int(s) & 1) candidates.push_back({kind, d, s});
-    };
-    add(PredictorKind::None, 1);  // after a cut, a frame may be best predicted from itself alone
-    for (uint32_t d : reference_candidates(*q, V, f, po)) add(PredictorKind::Reference, d);
-    if (f >= 2) add(PredictorKind::SecondOrder, 1);
-    if (options.model_prediction) add(PredictorKind::Model, 1);
-    if (candidates.empty())
-      candidates.push_back({f == 0 ? PredictorKind::None : PredictorKind::Reference, 1, SpatialMode::Off});
+  double total = 0;
+  for (uint32_t f : order) {
     int32_t* qf = q->data() + size_t(f) * stride;
     double best = HUGE_VAL;
-    for (const PredictorChoice& c : candidates) {
+    for (const PredictorChoice& c : candidates_for(*q, V, f, decoded, options, po)) {
       const PredictorChoice choice[3] = {c, c, c};
       for (int a = 0; a < 3; ++a) base_prediction(c, f, a, V, q->data(), options, &base[size_t(a) * V]);
       std::copy(qf, qf + stride, scratch.begin());
@@ -147,12 +204,40 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
       if (bits < best) {
         best = bits;
         best_frame.swap(scratch);
-        for (int a = 0; a < 3; ++a) plan[size_t(f) * 3 + size_t(a)] = c;
+        for (int a = 0; a < 3; ++a) plan->choices[size_t(f) * 3 + size_t(a)] = c;
       }
     }
     std::copy(best_frame.begin(), best_frame.end(), qf);
+    decoded[f] = 1;
+    total += best;
   }
-  return plan;
+  return total;
+}
+
+}  // namespace
+
+PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
+                                   double max_distance, std::vector<int32_t>* q, const ResidualOptions& options,
+                                   const ResidualPlanOptions& po) {
+  const Traversal trav = build_traversal(model);
+  // A hair inside the bound, so rounding in the error measurement cannot push it over.
+  const double radius = max_distance * (1.0 - 1e-9);
+  PredictorPlan best_plan;
+  std::vector<int32_t> best_q;
+  double best = HUGE_VAL;
+  for (uint32_t gop : po.gop_sizes) {
+    std::vector<int32_t> trial(*q);
+    PredictorPlan plan;
+    const double bits =
+        plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, gop), options, po, &trial, &plan);
+    if (bits < best) {
+      best = bits;
+      best_plan = std::move(plan);
+      best_q.swap(trial);
+    }
+  }
+  q->swap(best_q);
+  return best_plan;
 }
 
 }  // namespace dcurve

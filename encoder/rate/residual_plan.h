@@ -10,16 +10,19 @@
 namespace dcurve {
 
 struct ResidualPlanOptions {
-  // Past frames tried as a reference besides the previous two, picked by the smallest
+  // Decoded frames tried as a reference besides the nearest ones, picked by the smallest
   // difference to the frame being coded (animations repeat their poses). >= 0.
   uint32_t extra_references = 3;
   // How far back reference frames are searched, frames, >= 1.
   uint32_t max_reference_distance = 1024;
+  // Coding orders tried (the cheapest estimate wins): 1 is time order; g > 1 codes every
+  // g-th frame first and the frames between by recursive midpoints. Not empty; each >= 1.
+  std::vector<uint32_t> gop_sizes = {1, 2, 4, 8, 16};
   // Choose grid values within the tolerance (true) or keep the rounded ones (false).
   bool snap = true;
   // Candidate predictors: bit (1 << PredictorKind) and bit (1 << SpatialMode) allowed.
-  // Frames no allowed kind can serve (frame 0 without None or Model, frame 1 without
-  // Reference...) fall back to Reference d = 1, or None on frame 0. For tests and studies.
+  // Frames no allowed kind can serve (frame 0 without None or Model...) fall back to None
+  // without spatial correction. For tests and studies.
   uint32_t kinds = ~0u;
   uint32_t spatial_modes = ~0u;
 };
@@ -29,7 +32,7 @@ struct ResidualPlanOptions {
 // predictors, not to predict file sizes exactly.
 double estimate_residual_bits(const std::vector<int64_t>& residuals);
 
-// Chooses the predictor of every frame (the same for its three axes) and, when
+// Chooses the coding order, the predictor of every frame (the same for its three axes) and, when
 // plan_options.snap is set, the grid values themselves: of the grid points whose decoded
 // position lies within max_distance of the input vertex, the one cheapest to code against
 // its prediction (the decoder reproduces any grid value exactly, so the error bound holds
