@@ -20,13 +20,14 @@ uint64_t walk_mantissa(Coder& coder, std::array<BitModel, 3>& top, BitModel& res
 }
 }  // namespace
 
-AdaptiveIntCoder::AdaptiveIntCoder(int contexts) : ctx_(size_t(contexts < 1 ? 1 : contexts)) {}
+AdaptiveIntCoder::AdaptiveIntCoder(int contexts, int sign_contexts)
+    : ctx_(size_t(contexts < 1 ? 1 : contexts)), sign_(size_t(sign_contexts < 1 ? 1 : sign_contexts)) {}
 
-void AdaptiveIntCoder::encode(RangeEncoder& enc, int ctx, int64_t v) {
+void AdaptiveIntCoder::encode(RangeEncoder& enc, int ctx, int sign_ctx, int64_t v) {
   Context& c = ctx_[size_t(ctx)];
   enc.encode(c.zero, v == 0);
   if (v == 0) return;
-  enc.encode(c.sign, v < 0);
+  enc.encode(sign_[size_t(sign_ctx)], v < 0);
   const uint64_t m = v < 0 ? uint64_t(-v) : uint64_t(v);
   const int e = floor_log2(m);
   for (int i = 0; i < e; ++i) enc.encode(c.exponent[size_t(i)], 1);
@@ -39,10 +40,10 @@ void AdaptiveIntCoder::encode(RangeEncoder& enc, int ctx, int64_t v) {
   });
 }
 
-int64_t AdaptiveIntCoder::decode(RangeDecoder& dec, int ctx) {
+int64_t AdaptiveIntCoder::decode(RangeDecoder& dec, int ctx, int sign_ctx) {
   Context& c = ctx_[size_t(ctx)];
   if (dec.decode(c.zero)) return 0;
-  const bool negative = dec.decode(c.sign);
+  const bool negative = dec.decode(sign_[size_t(sign_ctx)]);
   int e = 0;
   while (e < kMaxExponent && dec.decode(c.exponent[size_t(e)])) ++e;
   Mantissa& mt = mant_[size_t(e)];

@@ -1,7 +1,8 @@
 // Context-adaptive coding of signed integers (residuals) with the binary range coder.
 // A value is split into binary decisions: zero?, sign, exponent (unary), mantissa. The
-// zero flag, sign and exponent adapt per caller-chosen context; mantissa bits adapt per
-// exponent, since their statistics depend little on the neighbourhood.
+// zero flag and exponent adapt per caller-chosen magnitude context, the sign per a separate
+// sign context; mantissa bits adapt per exponent, since their statistics depend little on
+// the neighbourhood.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -17,18 +18,18 @@ constexpr int kMaxExponent = 40;
 
 class AdaptiveIntCoder {
  public:
-  // contexts: number of distinct context ids callers pass, >= 1.
-  explicit AdaptiveIntCoder(int contexts);
+  // contexts, sign_contexts: numbers of distinct context ids callers pass, >= 1 each.
+  AdaptiveIntCoder(int contexts, int sign_contexts);
 
-  // ctx in [0, contexts). |v| < 2^(kMaxExponent+1).
-  void encode(RangeEncoder& enc, int ctx, int64_t v);
+  // ctx in [0, contexts), sign_ctx in [0, sign_contexts). |v| < 2^(kMaxExponent+1).
+  void encode(RangeEncoder& enc, int ctx, int sign_ctx, int64_t v);
   // Returns the decoded value; a corrupted stream yields some value (the caller checks
   // ranges and the stream's checksum), never an out-of-bounds access.
-  int64_t decode(RangeDecoder& dec, int ctx);
+  int64_t decode(RangeDecoder& dec, int ctx, int sign_ctx);
 
  private:
   struct Context {
-    BitModel zero, sign;
+    BitModel zero;
     std::array<BitModel, kMaxExponent> exponent;  // "exponent > i" decisions
   };
   struct Mantissa {
@@ -36,6 +37,7 @@ class AdaptiveIntCoder {
     BitModel rest;
   };
   std::vector<Context> ctx_;
+  std::vector<BitModel> sign_;
   std::array<Mantissa, kMaxExponent + 1> mant_;
 };
 

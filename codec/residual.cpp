@@ -16,19 +16,23 @@ constexpr int kSpatialShift = 4;
 
 // Context of a residual: how large the residuals around it already were. Neighbours in
 // this frame (7 classes, the last one for "no decoded neighbour"), the same vertex and
-// axis in the previous frame (4), the earlier axes of the same vertex in this frame
-// (4, plus 1 for the first axis).
+// axis in the temporal source frame (4), the earlier axes of the same vertex in this
+// frame (4, plus 1 for the first axis). The temporal source is the base prediction's
+// first reference frame, else the frame coded just before.
 constexpr int kNeighbourClasses = 7, kTemporalClasses = 4, kAxisClasses = 5;
 constexpr int kContexts = kNeighbourClasses * kTemporalClasses * kAxisClasses;
+// Sign context: signs (-, 0, +) of the temporal source's residual and of the sum of the
+// decoded neighbours' residuals: drift out of the tolerance ball repeats its direction.
+constexpr int kSignContexts = 9;
 
 int magnitude_class(uint32_t m) {
   return m < 3 ? int(m) : m <= 4 ? 3 : m <= 8 ? 4 : 5;
 }
 
-uint32_t clamp_abs(int64_t r) {
-  const uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
-  return m > 0xFFFFu ? 0xFFFFu : uint32_t(m);
-}
+int sign3(int64_t v) { return v < 0 ? 0 : v == 0 ? 1 : 2; }
+
+// Residuals are kept, clamped to a byte, for the contexts of later vertices and frames.
+int8_t clamp8(int64_t r) { return int8_t(r < -127 ? -127 : r > 127 ? 127 : r); }
 
 // Walks the frames in decoding order, calling step(ctx, &r) for every residual r. When
 // decoding, step writes r and the walker fills q; otherwise the walker computes r from q
@@ -39,11 +43,19 @@ bool walk_frames(const Model& model, const Traversal& trav, const PredictorPlan&
   const uint32_t V = model.meta.vertex_count;
   const size_t stride = size_t(V) * 3;
   std::vector<int64_t> base(stride);
-  std::vector<uint32_t> cur_abs(stride, 0), prev_abs(stride, 0);
+  std::vector<int8_t> res(stride * plan.order.size(), 0);
+  const int8_t* previous = nullptr;  // residuals of the frame coded last
   for (uint32_t f : plan.order) {
     const PredictorChoice* choice = &plan.choices[size_t(f) * 3];
     for (int a = 0; a < 3; ++a) base_prediction(choice[a], f, a, V, q, options, &base[size_t(a) * V]);
     int32_t* qf = q + size_t(f) * stride;
+    int8_t* rf = &res[size_t(f) * stride];
+    const int8_t* source[3];
+    for (int a = 0; a < 3; ++a) {
+      const PredictorChoice& c = choice[a];
+      const bool has_ref = c.kind == PredictorKind::Reference || c.kind == PredictorKind::Linear;
+      source[a] = has_ref ? &res[size_t(c.r0) * stride] : previous;
+    }
     for (uint32_t pos = 0; pos < V; ++pos) {
       const uint32_t v = trav.order[pos];
       const uint32_t nb_begin = trav.nb_offsets[pos], nb_end = trav.nb_offsets[pos + 1];
@@ -53,30 +65,37 @@ bool walk_frames(const Model& model, const Traversal& trav, const PredictorPlan&
       for (int a = 0; a < 3; ++a) {
         const int64_t pred = preds[a];
         int nb_class = kNeighbourClasses - 1;
+        int nb_sum = 0;
         if (nb_begin != nb_end) {
           uint32_t sum = 0;
-          for (uint32_t k = nb_begin; k < nb_end; ++k) sum += cur_abs[size_t(trav.nb[k]) * 3 + size_t(a)];
+          for (uint32_t k = nb_begin; k < nb_end; ++k) {
+            const int n = rf[size_t(trav.nb[k]) * 3 + size_t(a)];
+            sum += uint32_t(n < 0 ? -n : n);
+            nb_sum += n;
+          }
           nb_class = magnitude_class((sum + (nb_end - nb_begin) - 1) / (nb_end - nb_begin));
         }
         const size_t i = size_t(v) * 3 + size_t(a);
-        const int t_class = std::min(magnitude_class(prev_abs[i]), kTemporalClasses - 1);
+        const int t = source[a] ? source[a][i] : 0;
+        const int t_class = std::min(magnitude_class(uint32_t(t < 0 ? -t : t)), kTemporalClasses - 1);
         const int a_class = a == 0 ? kAxisClasses - 1 : std::min(magnitude_class(axis_max), kAxisClasses - 2);
         const int ctx = (nb_class * kTemporalClasses + t_class) * kAxisClasses + a_class;
+        const int sign_ctx = sign3(t) * 3 + sign3(nb_sum);
         int64_t r;
         if constexpr (kDecode) {
-          if (!step(ctx, &r)) return false;
+          if (!step(ctx, sign_ctx, &r)) return false;
           const int64_t value = pred + r;
           if (value < INT32_MIN || value > INT32_MAX) return false;
           qf[i] = int32_t(value);
         } else {
           r = int64_t(qf[i]) - pred;
-          step(ctx, &r);
+          step(ctx, sign_ctx, &r);
         }
-        cur_abs[i] = clamp_abs(r);
-        axis_max = std::max(axis_max, cur_abs[i]);
+        rf[i] = clamp8(r);
+        axis_max = std::max(axis_max, uint32_t(rf[i] < 0 ? -rf[i] : rf[i]));
       }
     }
-    std::swap(cur_abs, prev_abs);
+    previous = rf;
   }
   return true;
 }
@@ -164,10 +183,10 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
     }
   }
   RangeEncoder enc;
-  AdaptiveIntCoder ints(kContexts);
+  AdaptiveIntCoder ints(kContexts, kSignContexts);
   std::vector<int32_t> work(q);  // the walker takes a mutable pointer, shared with decoding
-  walk_frames<false>(model, trav, p, options, work.data(), [&](int ctx, int64_t* r) {
-    ints.encode(enc, ctx, *r);
+  walk_frames<false>(model, trav, p, options, work.data(), [&](int ctx, int sign_ctx, int64_t* r) {
+    ints.encode(enc, ctx, sign_ctx, *r);
     return true;
   });
   const std::vector<uint8_t>& stream = enc.finish();
@@ -240,9 +259,9 @@ bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* 
   const Traversal trav = build_traversal(model);
   q->assign(total, 0);
   RangeDecoder dec(stream, size_t(stream_size));
-  AdaptiveIntCoder ints(kContexts);
-  const bool ok = walk_frames<true>(model, trav, plan, options, q->data(), [&](int ctx, int64_t* r) {
-    *r = ints.decode(dec, ctx);
+  AdaptiveIntCoder ints(kContexts, kSignContexts);
+  const bool ok = walk_frames<true>(model, trav, plan, options, q->data(), [&](int ctx, int sign_ctx, int64_t* r) {
+    *r = ints.decode(dec, ctx, sign_ctx);
     return !dec.overrun();
   });
   if (!ok || !dec.at_clean_end())
@@ -256,7 +275,7 @@ std::vector<int64_t> residual_values(const Model& model, const std::vector<int32
   std::vector<int64_t> out;
   out.reserve(q.size());
   std::vector<int32_t> work(q);
-  walk_frames<false>(model, build_traversal(model), plan, options, work.data(), [&](int, int64_t* r) {
+  walk_frames<false>(model, build_traversal(model), plan, options, work.data(), [&](int, int, int64_t* r) {
     out.push_back(*r);
     return true;
   });

@@ -275,12 +275,12 @@ TEST(AdaptiveIntCoder, ExtremeAndSkewedValuesRoundTrip) {
     values.emplace_back(int(rng() % 5), rng() % 2 ? mag : -mag);
   }
   RangeEncoder enc;
-  AdaptiveIntCoder coder(5);
-  for (auto& [ctx, v] : values) coder.encode(enc, ctx, v);
+  AdaptiveIntCoder coder(5, 3);
+  for (auto& [ctx, v] : values) coder.encode(enc, ctx, ctx % 3, v);
   const std::vector<uint8_t> bytes = enc.finish();
   RangeDecoder dec(bytes.data(), bytes.size());
-  AdaptiveIntCoder decoder(5);
-  for (auto& [ctx, v] : values) ASSERT_EQ(decoder.decode(dec, ctx), v);
+  AdaptiveIntCoder decoder(5, 3);
+  for (auto& [ctx, v] : values) ASSERT_EQ(decoder.decode(dec, ctx, ctx % 3), v);
   EXPECT_TRUE(dec.at_clean_end());
 }
 
@@ -288,9 +288,9 @@ TEST(AdaptiveIntCoder, CostsCloseToTheEntropyOfSkewedData) {
   // 95% zeros, 5% +-1: entropy H(0.95) + 0.05 * 1 bit (sign) = 0.336 bit per value.
   std::mt19937 rng(11);
   RangeEncoder enc;
-  AdaptiveIntCoder coder(1);
+  AdaptiveIntCoder coder(1, 1);
   const int n = 50000;
-  for (int i = 0; i < n; ++i) coder.encode(enc, 0, rng() % 100 < 95 ? 0 : (rng() % 2 ? 1 : -1));
+  for (int i = 0; i < n; ++i) coder.encode(enc, 0, 0, rng() % 100 < 95 ? 0 : (rng() % 2 ? 1 : -1));
   const double bits = 8.0 * double(enc.finish().size());
   EXPECT_LT(bits / n, 0.336 * 1.08);
 }
