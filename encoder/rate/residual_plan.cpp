@@ -228,8 +228,10 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
   for (uint32_t gop : po.gop_sizes) {
     std::vector<int32_t> trial(*q);
     PredictorPlan plan;
-    const double bits =
-        plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, gop), options, po, &trial, &plan);
+    plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, gop), options, po, &trial, &plan);
+    // The order is judged by the coded size: the estimate that ranks predictors within a
+    // frame ignores the contexts, which favour some orders.
+    const double bits = double(encode_residuals(model, trial, &plan, options).size());
     if (bits < best) {
       best = bits;
       best_plan = std::move(plan);
