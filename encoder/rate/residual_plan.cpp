@@ -30,11 +30,18 @@ double distance2(const ResidualLayer& layer, const float* x, const int64_t* k) {
 }
 
 // Moves qv (the vertex's three grid values) to the admissible grid point (decoded within
-// sqrt(r2) of x) that is cheapest against `pred`, ties to the nearest; keeps qv when no
-// other point qualifies.
-void snap_vertex(const ResidualLayer& layer, const float* x, double radius, const int64_t* pred, int32_t* qv) {
+// radius of x) with the lowest score: estimated bits against `pred`, plus
+// distance_weight * (distance / radius)^2 bits, since a point near the input predicts
+// later frames better; keeps qv when no other point qualifies.
+void snap_vertex(const ResidualLayer& layer, const float* x, double radius, double distance_weight,
+                 const int64_t* pred, int32_t* qv) {
   const double r2 = radius * radius;
-  if (distance2(layer, x, pred) <= r2) {
+  auto score = [&](const int64_t* k, double d2) {
+    return residual_cost(k[0] - pred[0]) + residual_cost(k[1] - pred[1]) + residual_cost(k[2] - pred[2]) +
+           distance_weight * d2 / r2;
+  };
+  // Any nonzero residual costs at least 2: below that weight an admissible prediction wins.
+  if (distance_weight < 2 && distance2(layer, x, pred) <= r2) {
     for (int a = 0; a < 3; ++a) qv[a] = int32_t(pred[a]);  // admissible, so within int32 range
     return;
   }
@@ -44,23 +51,31 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, cons
     hi[a] = int64_t(std::ceil((double(x[a]) + radius - layer.origin[a]) / layer.step));
     best[a] = qv[a];
   }
-  int best_cost = 0;
-  for (int a = 0; a < 3; ++a) best_cost += residual_cost(best[a] - pred[a]);
-  double best_d2 = distance2(layer, x, best);
+  double best_score = score(best, distance2(layer, x, best));
   for (k[0] = lo[0]; k[0] <= hi[0]; ++k[0])
     for (k[1] = lo[1]; k[1] <= hi[1]; ++k[1])
       for (k[2] = lo[2]; k[2] <= hi[2]; ++k[2]) {
         const double d2 = distance2(layer, x, k);
         if (d2 > r2) continue;
-        const int cost = residual_cost(k[0] - pred[0]) + residual_cost(k[1] - pred[1]) + residual_cost(k[2] - pred[2]);
-        if (cost < best_cost || (cost == best_cost && d2 < best_d2)) {
-          best_cost = cost;
-          best_d2 = d2;
+        const double sc = score(k, d2);
+        if (sc < best_score) {
+          best_score = sc;
           std::copy(k, k + 3, best);
         }
       }
   for (int a = 0; a < 3; ++a)
     if (best[a] >= INT32_MIN && best[a] <= INT32_MAX) qv[a] = int32_t(best[a]);
+}
+
+// Class of the earlier neighbours' residual magnitudes on `axis` (0..3, 4 for none):
+// lets the estimate see that clustered residuals are cheaper to code than scattered ones.
+int neighbour_class(const Traversal& t, uint32_t pos, int axis, const std::vector<uint8_t>& magnitude) {
+  const uint32_t begin = t.nb_offsets[pos], end = t.nb_offsets[pos + 1];
+  if (begin == end) return 4;
+  uint32_t sum = 0;
+  for (uint32_t k = begin; k < end; ++k) sum += magnitude[size_t(t.nb[k]) * 3 + size_t(axis)];
+  const uint32_t mean = (sum + (end - begin) - 1) / (end - begin);
+  return int(std::min<uint32_t>(mean, 3));
 }
 
 // Decoded frames most similar to frame f (sum of absolute grid differences on a sample
@@ -130,7 +145,7 @@ std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint3
   std::vector<PredictorChoice> out;
   auto add = [&](PredictorKind kind, uint32_t r0, uint32_t r1) {
     if (!(po.kinds >> int(kind) & 1)) return;
-    for (SpatialMode s : {SpatialMode::Off, SpatialMode::Mean, SpatialMode::Parallelogram}) {
+    for (SpatialMode s : {SpatialMode::Off, SpatialMode::Mean, SpatialMode::Parallelogram, SpatialMode::Blend}) {
       const PredictorChoice c{kind, r0, r1, s};
       if (po.spatial_modes >> int(s) & 1 && predictor_usable(c, f, decoded, options)) out.push_back(c);
     }
@@ -152,22 +167,30 @@ std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint3
 
 }  // namespace
 
-double estimate_residual_bits(const std::vector<int64_t>& residuals) {
-  std::vector<uint64_t> hist(kClasses, 0);
+double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::vector<uint8_t>& contexts) {
+  std::vector<std::vector<uint64_t>> hist;
+  std::vector<uint64_t> count;
   double mantissa = 0;
-  for (int64_t r : residuals) {
-    if (r == 0) { ++hist[0]; continue; }
+  for (size_t i = 0; i < residuals.size(); ++i) {
+    const size_t c = contexts[i];
+    if (c >= hist.size()) {
+      hist.resize(c + 1, std::vector<uint64_t>(kClasses, 0));
+      count.resize(c + 1, 0);
+    }
+    ++count[c];
+    const int64_t r = residuals[i];
+    if (r == 0) { ++hist[c][0]; continue; }
     uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
     int e = 0;
     while (m >>= 1) ++e;
     e = std::min(e, 40);
     mantissa += e;
-    ++hist[size_t(1 + 2 * e + (r < 0))];
+    ++hist[c][size_t(1 + 2 * e + (r < 0))];
   }
-  const double n = double(residuals.size());
   double bits = mantissa;
-  for (uint64_t h : hist)
-    if (h) bits -= double(h) * std::log2(double(h) / n);
+  for (size_t c = 0; c < hist.size(); ++c)
+    for (uint64_t h : hist[c])
+      if (h) bits -= double(h) * std::log2(double(h) / double(count[c]));
   return bits;
 }
 
@@ -183,6 +206,7 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
   plan->choices.assign(size_t(F) * 3, PredictorChoice());
   std::vector<uint8_t> decoded(F, 0);
   std::vector<int64_t> base(stride), residuals(stride);
+  std::vector<uint8_t> contexts(stride), magnitude(stride);  // magnitude: by vertex, clamped
   std::vector<int32_t> scratch(stride), best_frame(stride);
   double total = 0;
   for (uint32_t f : order) {
@@ -197,10 +221,18 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
         int64_t pred[3];
         vertex_prediction(choice, trav, pos, V, scratch.data(), base.data(), pred);
         int32_t* qv = &scratch[size_t(v) * 3];
-        if (po.snap) snap_vertex(model.residual, &frames[f][size_t(v) * 3], radius, pred, qv);
-        for (int a = 0; a < 3; ++a) residuals[size_t(pos) * 3 + size_t(a)] = int64_t(qv[a]) - pred[a];
+        if (po.snap) snap_vertex(model.residual, &frames[f][size_t(v) * 3], radius, po.distance_weight, pred, qv);
+        uint8_t axis_max = 0;
+        for (int a = 0; a < 3; ++a) {
+          const int64_t r = int64_t(qv[a]) - pred[a];
+          const size_t i = size_t(pos) * 3 + size_t(a);
+          residuals[i] = r;
+          contexts[i] = uint8_t(neighbour_class(trav, pos, a, magnitude) * 3 + std::min<uint8_t>(axis_max, 2));
+          magnitude[size_t(v) * 3 + size_t(a)] = uint8_t(std::min<int64_t>(r < 0 ? -r : r, 255));
+          axis_max = std::max(axis_max, magnitude[size_t(v) * 3 + size_t(a)]);
+        }
       }
-      const double bits = estimate_residual_bits(residuals);
+      const double bits = estimate_residual_bits(residuals, contexts);
       if (bits < best) {
         best = bits;
         best_frame.swap(scratch);

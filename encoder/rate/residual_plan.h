@@ -20,6 +20,9 @@ struct ResidualPlanOptions {
   std::vector<uint32_t> gop_sizes = {1, 2, 4, 8, 16};
   // Choose grid values within the tolerance (true) or keep the rounded ones (false).
   bool snap = true;
+  // Bits charged for snapping to the edge of the tolerance ball (scaled by the squared
+  // distance): trades this frame's bits against the accuracy later predictions start from.
+  double distance_weight = 0.0;
   // Candidate predictors: bit (1 << PredictorKind) and bit (1 << SpatialMode) allowed.
   // Frames no allowed kind can serve (frame 0 without None or Model...) fall back to None
   // without spatial correction. For tests and studies.
@@ -28,9 +31,10 @@ struct ResidualPlanOptions {
 };
 
 // Estimated cost, bits, of coding `residuals` with an adaptive integer coder: their
-// order-0 entropy over exponent classes plus the raw mantissa bits. Used to rank
-// predictors, not to predict file sizes exactly.
-double estimate_residual_bits(const std::vector<int64_t>& residuals);
+// order-0 entropy over exponent classes within each context (contexts[i] < 256, same
+// length as residuals) plus the raw mantissa bits. Ranks predictors; does not predict
+// file sizes exactly.
+double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::vector<uint8_t>& contexts);
 
 // Chooses the coding order, the predictor of every frame (the same for its three axes) and, when
 // plan_options.snap is set, the grid values themselves: of the grid points whose decoded
