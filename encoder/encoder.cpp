@@ -63,9 +63,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
       if (g > INT32_MAX) return fail(error, "tolerance too small for the motion range (grid overflow)");
       q[f * size_t(V) * 3 + i] = int32_t(g);
     }
-  ResidualPlanOptions rpo;
-  if (getenv("DW")) rpo.distance_weight = atof(getenv("DW"));
-  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, opt.tolerance * L, &q, {}, rpo);
+  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, opt.tolerance * L, &q);
   r.payload = encode_residuals(m, q, &plan);
   if (opt.progress) opt.progress(0.5);
 
