@@ -150,7 +150,7 @@ bool plan_is_valid(const PredictorPlan& plan, uint32_t F, const ResidualOptions&
 }
 
 namespace {
-uint64_t zigzag(int64_t v) { return uint64_t(v << 1) ^ uint64_t(v >> 63); }
+uint64_t zigzag(int64_t v) { return (uint64_t(v) << 1) ^ uint64_t(v >> 63); }
 int64_t unzigzag(uint64_t z) { return int64_t(z >> 1) ^ -int64_t(z & 1); }
 // Reference frames are written relative to the frame they serve: small numbers.
 void write_ref(ByteWriter& w, uint32_t f, uint32_t r) { w.varint(zigzag(int64_t(r) - int64_t(f))); }

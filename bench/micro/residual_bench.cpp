@@ -27,7 +27,7 @@ struct Case {
   size_t delta_zstd = 0, plan_zstd = 0;
 };
 
-uint64_t zigzag(int64_t v) { return uint64_t(v << 1) ^ uint64_t(v >> 63); }
+uint64_t zigzag(int64_t v) { return (uint64_t(v) << 1) ^ uint64_t(v >> 63); }
 
 size_t zstd_size(const std::vector<uint8_t>& raw) {
   std::vector<uint8_t> out(ZSTD_compressBound(raw.size()));
