@@ -166,6 +166,9 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
   const PredictorPlan fallback = plan ? PredictorPlan() : default_predictor_plan(F);
   const PredictorPlan& p = plan ? *plan : fallback;
   if (!plan_is_valid(p, F, options)) return {};
+  if (q.size() != size_t(model.meta.vertex_count) * 3 * F ||
+      (options.model_prediction && options.model_prediction->size() != q.size()))
+    return {};
   const Traversal trav = build_traversal(model);
   ByteWriter w;
   w.u8(kFormatVersion);

@@ -31,7 +31,7 @@ bool plan_is_valid(const PredictorPlan& plan, uint32_t frame_count, const Residu
 // `model` into a payload for model.residual.payload. `model` supplies counts, faces (the
 // neighbour structure; leave them empty when the file will not store them) and curves.
 // `plan` (plan_is_valid) picks the order and predictors; null means default_predictor_plan.
-// An invalid plan is a caller bug: returns an empty vector.
+// An invalid plan or mismatched sizes are a caller bug: returns an empty vector.
 std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
                                       const PredictorPlan* plan = nullptr,
                                       const ResidualOptions& options = {});
