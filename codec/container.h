@@ -15,7 +15,10 @@ constexpr uint16_t kFormatVersionMajor = 1;
 constexpr uint16_t kFormatVersionMinor = 0;
 
 struct WriteOptions {
-  bool connectivity = true;  // store faces; engines that already hold the mesh can drop them
+  // Store faces; engines that already hold the mesh can drop them. The residual layer
+  // predicts from whatever neighbours the file carries, so a model written without faces
+  // must have had its residual coded with model.faces empty (encode_animation does this).
+  bool connectivity = true;
   // A reader always gets model.faces back exactly. Smallest uses the FACE Traversal layout
   // when model.faces is already in traversal_order (codec/faces.h) and that codes smaller;
   // Exact always uses the Exact layout.

@@ -8,6 +8,7 @@
 #include "codec/residual.h"
 #include "dcurve.hpp"
 #include "frame_evaluator.h"
+#include "model_prediction.h"
 
 namespace dcurve {
 
@@ -41,7 +42,16 @@ std::unique_ptr<Decoder> Decoder::open_memory(const void* data, size_t size, std
     if (error) *error = "vertex and frame counts are implausible for the file size";
     return nullptr;
   }
-  if (m.residual.step > 0 && !decode_residuals(m, &q, error)) return nullptr;
+  if (m.residual.step > 0) {
+    // Files with a motion model may predict frames from it: its grid values come first.
+    std::vector<int32_t> prediction;
+    ResidualOptions options;
+    if (has_motion_model(m)) {
+      if (!model_grid_prediction(m, budget, &prediction, error)) return nullptr;
+      options.model_prediction = &prediction;
+    }
+    if (!decode_residuals(m, &q, error, options)) return nullptr;
+  }
   if (!impl->evaluator.build(m, q, budget, error)) return nullptr;
   return std::unique_ptr<Decoder>(new Decoder(std::move(impl)));
 }

@@ -7,10 +7,12 @@
 #include "codec/model.h"
 #include "codec/residual.h"
 #include "decoder/dcurve.hpp"
+#include "decoder/model_prediction.h"
 #include "encoder/curves/extract.h"
 #include "encoder/curves/report.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/motion_model.h"
+#include "encoder/rate/residual_plan.h"
 
 namespace dcurve {
 namespace {
@@ -64,7 +66,9 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   EncodeReport rep;
   Model m;
   m.meta = {V, F, anim.frame_rate, opt.tolerance, L, ""};
-  m.faces = anim.faces;
+  // The residual layer predicts from mesh neighbours when the file stores faces, and from
+  // curve neighbours otherwise: it must see exactly what the decoder will.
+  if (opt.connectivity) m.faces = anim.faces;
 
   CurveOptions co;
   co.target_points = opt.curve_points;
@@ -86,10 +90,19 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   progress(0.6);
 
   m.residual = make_grid(anim, opt.tolerance * L);
-  std::vector<int32_t> q;
+  std::vector<int32_t> q, prediction;
   if (!quantize_to_grid(anim, m.residual, &q, error)) return false;
-  m.residual.payload = encode_residuals(m, q);
-  progress(0.8);
+  ResidualOptions ro;
+  if (has_motion_model(m)) {
+    // The model's own frames on the grid: the residual layer's Model predictor, computed
+    // by the decoder's code so both sides agree bit for bit.
+    if (!model_grid_prediction(m, UINT64_MAX, &prediction, error)) return false;
+    ro.model_prediction = &prediction;
+  }
+  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, opt.tolerance * L, &q, ro);
+  m.residual.payload = encode_residuals(m, q, &plan, ro);
+  if (m.residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
+  progress(0.9);
 
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
@@ -100,7 +113,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     return fail(error, "internal error: decoded max error " + std::to_string(rep.error.max_error) +
                            " exceeds the tolerance");
   rep.bytes = out->size();
-  if (opt.connectivity) {
+  if (!m.faces.empty()) {
     // What the faces cost is whatever the file without them saves.
     wo.connectivity = false;
     rep.connectivity_bytes = rep.bytes - write_container(m, wo).size();

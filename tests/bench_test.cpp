@@ -299,7 +299,9 @@ TEST(BenchCli, BadInputsFailClearly) {
   EXPECT_EQ(WEXITSTATUS(status), 2) << out;
   out = run_cli("--protocol paper2024 " + testing::TempDir(), &status);
   EXPECT_EQ(WEXITSTATUS(status), 1);
-  EXPECT_NE(out.find("not built yet"), std::string::npos) << out;
+  EXPECT_NE(out.find("no .obj, .ply or .off frames"), std::string::npos) << out;
+  out = run_cli("--protocol paper2024", &status);
+  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
 }
 
 }  // namespace

@@ -120,7 +120,7 @@ TEST(DecoderEval, NormalsAreUnitAndNeedConnectivity) {
   }
   WriteOptions no_faces;
   no_faces.connectivity = false;
-  auto bare = open(small_model(3), no_faces);
+  auto bare = open(testing::without_faces(small_model(3)), no_faces);
   ASSERT_TRUE(bare);
   EXPECT_EQ(bare->faces(), nullptr);
   EXPECT_FALSE(bare->compute_normals(xyz.data(), n.data()));

@@ -34,7 +34,7 @@ std::vector<Vector> recipes() {
   v.push_back({"frames_only", small_model(4), {}});
   v.back().options.face_layout = Layout::Exact;
 
-  v.push_back({"zero_segments_no_faces", small_model(5, {0, 2, 4}), {}});
+  v.push_back({"zero_segments_no_faces", testing::without_faces(small_model(5, {0, 2, 4})), {}});
   v.back().options.connectivity = false;
 
   Model pde = small_model(9, {0, 3, 8, 8});

@@ -62,6 +62,15 @@ inline Model small_model(uint32_t F, const std::vector<uint32_t>& segment_frames
   return m;
 }
 
+// `m` without faces, its residual layer recoded to match: the residual predicts from mesh
+// neighbours when faces are stored and from curve neighbours otherwise, so a file written
+// without connectivity must have been coded without it.
+inline Model without_faces(Model m) {
+  m.faces.clear();
+  m.residual.payload = encode_residuals(m, grid(m.meta.vertex_count, m.meta.frame_count));
+  return m;
+}
+
 // An n x n vertex sheet (2 (n-1)^2 triangles, consistently wound) whose vertex ids are
 // scrambled by a fixed permutation, one open curve per row, F frames of grid() positions,
 // no segments. Scrambled ids make the FACE Traversal layout pay off.

@@ -1,0 +1,119 @@
+// Residual layer on corpus-ext: coded bytes against quantized temporal delta (varint +
+// zstd -19, the thin path) on the same grid values, the same residuals through zstd
+// instead of the range coder, and load (decode) speed. Sequences come from
+// DCURVE_CORPUS_EXT (environment) or ../shared/corpus-ext; tolerances from
+// DCURVE_RESIDUAL_TOLS (comma list, default "1e-3").
+#include <benchmark/benchmark.h>
+#include <zstd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+
+#include "codec/bytes.h"
+#include "codec/container.h"
+#include "codec/residual.h"
+#include "encoder/encoder.h"
+#include "encoder/rate/residual_plan.h"
+
+namespace {
+using namespace dcurve;
+
+struct Case {
+  Model model;  // as read back from the encoded file
+  std::vector<int32_t> q;
+  size_t delta_zstd = 0, plan_zstd = 0;
+};
+
+uint64_t zigzag(int64_t v) { return (uint64_t(v) << 1) ^ uint64_t(v >> 63); }
+
+size_t zstd_size(const std::vector<uint8_t>& raw) {
+  std::vector<uint8_t> out(ZSTD_compressBound(raw.size()));
+  return ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), 19);
+}
+
+size_t varint_zstd(const std::vector<int64_t>& values) {
+  ByteWriter w;
+  for (int64_t v : values) w.varint(zigzag(v));
+  return zstd_size(w.data());
+}
+
+std::string corpus() {
+  const char* env = std::getenv("DCURVE_CORPUS_EXT");
+  return env ? env : "../shared/corpus-ext";
+}
+
+const Case* load(const std::string& seq, double tol) {
+  static std::map<std::pair<std::string, double>, Case> cache;
+  auto key = std::make_pair(seq, tol);
+  auto it = cache.find(key);
+  if (it != cache.end()) return &it->second;
+  Animation anim;
+  std::string err;
+  if (!read_frame_folder(corpus() + "/" + seq, &anim, &err)) return nullptr;
+  EncodeOptions eo;
+  eo.tolerance = tol;
+  std::vector<uint8_t> file;
+  if (!encode_animation(anim, eo, &file, nullptr, &err)) return nullptr;
+  Case c;
+  if (!read_container(file.data(), file.size(), &c.model, &err) || !decode_residuals(c.model, &c.q, &err))
+    return nullptr;
+  const size_t n = size_t(c.model.meta.vertex_count) * 3;
+  // The thin path's values: every position rounded to the nearest grid point.
+  std::vector<int64_t> rounded(c.q.size()), delta(c.q.size());
+  const ResidualLayer& layer = c.model.residual;
+  for (size_t i = 0; i < c.q.size(); ++i)
+    rounded[i] = int64_t(std::nearbyint((double(anim.frames[i / n][i % n]) - layer.origin[i % 3]) / layer.step));
+  for (size_t i = 0; i < c.q.size(); ++i) delta[i] = rounded[i] - (i >= n ? rounded[i - n] : 0);
+  c.delta_zstd = varint_zstd(delta);
+  PredictorPlan plan;
+  if (!decode_predictor_plan(c.model, &plan, &err)) return nullptr;
+  c.plan_zstd = varint_zstd(residual_values(c.model, c.q, plan));
+  return &cache.emplace(key, std::move(c)).first->second;
+}
+
+void BM_ResidualLoad(benchmark::State& state, std::string seq, double tol) {
+  const Case* c = load(seq, tol);
+  if (!c) {
+    state.SkipWithError(("cannot read or encode " + corpus() + "/" + seq).c_str());
+    return;
+  }
+  std::vector<int32_t> q;
+  std::string err;
+  for (auto _ : state) {
+    if (!decode_residuals(c->model, &q, &err)) state.SkipWithError(err.c_str());
+    benchmark::DoNotOptimize(q.data());
+  }
+  const double payload = double(c->model.residual.payload.size());
+  const double vf = double(c->model.meta.vertex_count) * c->model.meta.frame_count;
+  state.counters["bytes"] = payload;
+  state.counters["delta_zstd_bytes"] = double(c->delta_zstd);
+  state.counters["ratio_vs_delta"] = payload / double(c->delta_zstd);
+  state.counters["same_residuals_zstd_bytes"] = double(c->plan_zstd);
+  state.counters["bpvf"] = 8 * payload / vf;
+  state.counters["delta_bpvf"] = 8 * double(c->delta_zstd) / vf;
+  state.counters["out_MBps"] = benchmark::Counter(4.0 * double(c->q.size()) / 1e6,
+                                                   benchmark::Counter::kIsIterationInvariantRate);
+}
+
+int register_all() {
+  const char* env = std::getenv("DCURVE_RESIDUAL_TOLS");
+  std::string tols = env ? env : "1e-3";
+  for (size_t p = 0; p < tols.size();) {
+    size_t q = tols.find(',', p);
+    const double tol = std::atof(tols.substr(p, q - p).c_str());
+    for (const char* seq : {"horse-gallop", "chicken-crossing", "cloth-sphere", "elastic-cow", "crane"})
+      benchmark::RegisterBenchmark((std::string("ResidualLoad/") + seq + "/" + tols.substr(p, q - p)).c_str(),
+                                   BM_ResidualLoad, std::string(seq), tol)
+          ->Unit(benchmark::kMillisecond);
+    p = q == std::string::npos ? tols.size() : q + 1;
+  }
+  return 0;
+}
+const int registered = register_all();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,44 @@
+// Context-adaptive coding of signed integers (residuals) with the binary range coder.
+// A value is split into binary decisions: zero?, sign, exponent (unary), mantissa. The
+// zero flag and exponent adapt per caller-chosen magnitude context, the sign per a separate
+// sign context; mantissa bits adapt per exponent, since their statistics depend little on
+// the neighbourhood.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "codec/range_coder.h"
+
+namespace dcurve {
+
+// Largest exponent (floor(log2|v|)) the binarization can express: |v| < 2^41, which
+// covers any difference of int32 grid values and their predictions.
+constexpr int kMaxExponent = 40;
+
+class AdaptiveIntCoder {
+ public:
+  // contexts, sign_contexts: numbers of distinct context ids callers pass, >= 1 each.
+  AdaptiveIntCoder(int contexts, int sign_contexts);
+
+  // ctx in [0, contexts), sign_ctx in [0, sign_contexts). |v| < 2^(kMaxExponent+1).
+  void encode(RangeEncoder& enc, int ctx, int sign_ctx, int64_t v);
+  // Returns the decoded value; a corrupted stream yields some value (the caller checks
+  // ranges and the stream's checksum), never an out-of-bounds access.
+  int64_t decode(RangeDecoder& dec, int ctx, int sign_ctx);
+
+ private:
+  struct Context {
+    BitModel zero;
+    std::array<BitModel, kMaxExponent> exponent;  // "exponent > i" decisions
+  };
+  struct Mantissa {
+    std::array<BitModel, 3> top;  // first two bits below the leading one, as a 2-level tree
+    BitModel rest;
+  };
+  std::vector<Context> ctx_;
+  std::vector<BitModel> sign_;
+  std::array<Mantissa, kMaxExponent + 1> mant_;
+};
+
+}  // namespace dcurve

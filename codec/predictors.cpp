@@ -1,0 +1,176 @@
+#include "codec/predictors.h"
+
+#include <algorithm>
+#include <deque>
+
+namespace dcurve {
+namespace {
+
+// Vertex adjacency (each undirected edge once per endpoint), sorted by neighbour id so
+// the traversal is deterministic.
+void adjacency(const std::vector<uint32_t>& faces, uint32_t V, std::vector<uint32_t>* offsets,
+               std::vector<uint32_t>* adj) {
+  std::vector<uint64_t> edges;
+  edges.reserve(faces.size() * 2);
+  for (size_t t = 0; t + 2 < faces.size(); t += 3)
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t a = faces[t + size_t(k)], b = faces[t + size_t((k + 1) % 3)];
+      if (a == b) continue;
+      edges.push_back(a << 32 | b);
+      edges.push_back(b << 32 | a);
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  offsets->assign(size_t(V) + 1, 0);
+  for (uint64_t e : edges) ++(*offsets)[size_t(e >> 32) + 1];
+  for (uint32_t v = 0; v < V; ++v) (*offsets)[v + 1] += (*offsets)[v];
+  adj->resize(edges.size());
+  for (size_t i = 0; i < edges.size(); ++i) (*adj)[i] = uint32_t(edges[i]);
+}
+
+// For every face (v, a, b) whose a and b precede v, and every face (a, b, c) across that
+// edge whose c precedes v: the parallelogram (a, b, c) of v.
+void add_parallelograms(const std::vector<uint32_t>& faces, const std::vector<uint32_t>& pos, Traversal* t) {
+  struct Corner {
+    uint64_t edge;  // (min, max) vertex ids of the edge the corner faces
+    uint32_t vertex;
+  };
+  std::vector<Corner> corners;
+  corners.reserve(faces.size());
+  auto key = [](uint64_t a, uint64_t b) { return a < b ? a << 32 | b : b << 32 | a; };
+  for (size_t f = 0; f + 2 < faces.size(); f += 3)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = faces[f + size_t(k)], a = faces[f + size_t((k + 1) % 3)], b = faces[f + size_t((k + 2) % 3)];
+      corners.push_back({key(a, b), v});
+    }
+  std::sort(corners.begin(), corners.end(),
+            [](const Corner& x, const Corner& y) { return x.edge != y.edge ? x.edge < y.edge : x.vertex < y.vertex; });
+  const uint32_t V = uint32_t(pos.size());
+  std::vector<std::vector<uint32_t>> per_vertex(V);
+  for (size_t i = 0; i < corners.size();) {
+    size_t j = i;
+    while (j < corners.size() && corners[j].edge == corners[i].edge) ++j;
+    const uint32_t a = uint32_t(corners[i].edge >> 32), b = uint32_t(corners[i].edge);
+    for (size_t x = i; x < j; ++x) {
+      const uint32_t v = corners[x].vertex;
+      if (v == a || v == b || pos[a] >= pos[v] || pos[b] >= pos[v]) continue;
+      for (size_t y = i; y < j; ++y) {
+        const uint32_t c = corners[y].vertex;
+        if (c == v || c == a || c == b || pos[c] >= pos[v]) continue;
+        per_vertex[v].insert(per_vertex[v].end(), {a, b, c});
+      }
+    }
+    i = j;
+  }
+  t->para_offsets.assign(size_t(V) + 1, 0);
+  for (uint32_t i = 0; i < V; ++i) {
+    const auto& list = per_vertex[t->order[i]];
+    t->para.insert(t->para.end(), list.begin(), list.end());
+    t->para_offsets[i + 1] = uint32_t(t->para.size() / 3);
+  }
+}
+
+Traversal traversal_from_faces(const Model& m) {
+  const uint32_t V = m.meta.vertex_count;
+  std::vector<uint32_t> off, adj;
+  adjacency(m.faces, V, &off, &adj);
+  Traversal t;
+  t.from_faces = true;
+  t.order.reserve(V);
+  std::vector<uint32_t> pos(V, UINT32_MAX);
+  std::deque<uint32_t> queue;
+  for (uint32_t seed = 0; seed < V; ++seed) {
+    if (pos[seed] != UINT32_MAX) continue;
+    pos[seed] = uint32_t(t.order.size());
+    t.order.push_back(seed);
+    queue.push_back(seed);
+    while (!queue.empty()) {
+      const uint32_t v = queue.front();
+      queue.pop_front();
+      for (uint32_t k = off[v]; k < off[v + 1]; ++k)
+        if (pos[adj[k]] == UINT32_MAX) {
+          pos[adj[k]] = uint32_t(t.order.size());
+          t.order.push_back(adj[k]);
+          queue.push_back(adj[k]);
+        }
+    }
+  }
+  t.nb_offsets.assign(size_t(V) + 1, 0);
+  for (uint32_t i = 0; i < V; ++i) {
+    const uint32_t v = t.order[i];
+    for (uint32_t k = off[v]; k < off[v + 1]; ++k)
+      if (pos[adj[k]] < i) t.nb.push_back(adj[k]);
+    t.nb_offsets[i + 1] = uint32_t(t.nb.size());
+  }
+  add_parallelograms(m.faces, pos, &t);
+  return t;
+}
+
+Traversal traversal_from_curves(const Model& m) {
+  Traversal t;
+  const Curves& c = m.curves;
+  t.order = c.vertices;
+  t.nb_offsets.assign(t.order.size() + 1, 0);
+  t.para_offsets.assign(t.order.size() + 1, 0);
+  for (uint32_t k = 0; k < c.curve_count(); ++k)
+    for (uint32_t i = c.offsets[k]; i < c.offsets[k + 1]; ++i) {
+      if (i > c.offsets[k]) t.nb.push_back(c.vertices[i - 1]);
+      if (i > c.offsets[k] + 1) t.para.insert(t.para.end(), {c.vertices[i - 1], c.vertices[i - 1], c.vertices[i - 2]});
+      t.nb_offsets[i + 1] = uint32_t(t.nb.size());
+      t.para_offsets[i + 1] = uint32_t(t.para.size() / 3);
+    }
+  return t;
+}
+
+}  // namespace
+
+Traversal build_traversal(const Model& model) {
+  return model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);
+}
+
+bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
+                      const ResidualOptions& options) {
+  auto ok = [&](uint32_t r) { return r < decoded.size() && r != f && decoded[r]; };
+  auto near = [](uint32_t a, uint32_t b) { return (a > b ? a - b : b - a) <= kMaxLinearSpan; };
+  switch (c.kind) {
+    case PredictorKind::None: return true;
+    case PredictorKind::Reference: return ok(c.r0);
+    case PredictorKind::Linear:
+      return ok(c.r0) && ok(c.r1) && c.r0 != c.r1 && near(c.r0, f) && near(c.r1, c.r0);
+    case PredictorKind::Model: return options.model_prediction != nullptr;
+  }
+  return false;
+}
+
+void base_prediction(const PredictorChoice& c, uint32_t f, int axis, uint32_t V, const int32_t* q,
+                     const ResidualOptions& options, int64_t* base) {
+  const size_t stride = size_t(V) * 3, a = size_t(axis);
+  switch (c.kind) {
+    case PredictorKind::None:
+      std::fill(base, base + V, int64_t(0));
+      return;
+    case PredictorKind::Reference: {
+      const int32_t* r = q + size_t(c.r0) * stride;
+      for (uint32_t v = 0; v < V; ++v) base[v] = r[size_t(v) * 3 + a];
+      return;
+    }
+    case PredictorKind::Linear: {
+      const int32_t* p0 = q + size_t(c.r0) * stride;
+      const int32_t* p1 = q + size_t(c.r1) * stride;
+      int64_t t = int64_t(f) - int64_t(c.r0), span = int64_t(c.r1) - int64_t(c.r0);
+      if (span < 0) { span = -span; t = -t; }
+      for (uint32_t v = 0; v < V; ++v) {
+        const int64_t y0 = p0[size_t(v) * 3 + a], y1 = p1[size_t(v) * 3 + a];
+        base[v] = y0 + detail::rounded_mean((y1 - y0) * t, span);
+      }
+      return;
+    }
+    case PredictorKind::Model: {
+      const int32_t* mp = options.model_prediction->data() + size_t(f) * stride;
+      for (uint32_t v = 0; v < V; ++v) base[v] = mp[size_t(v) * 3 + a];
+      return;
+    }
+  }
+}
+
+}  // namespace dcurve

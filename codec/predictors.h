@@ -1,0 +1,126 @@
+// Predictors of the residual layer: what encoder and decoder both compute from values
+// already decoded, so that only the prediction error is coded. format_spec/residual.md
+// documents each predictor; the ids below are written to files and never change meaning.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "codec/model.h"
+
+namespace dcurve {
+
+// Base prediction of frame f, per vertex and axis, from frames decoded before it (frames
+// are decoded in a coding order that need not be time order, see PredictorPlan).
+enum class PredictorKind : uint8_t {
+  None = 0,       // zero: only useful with a spatial correction (a frame predicted from itself)
+  Reference = 1,  // q[r0][v]: r0 = f - 1 is the plain temporal delta; other r0 reuse a past pose
+  Linear = 2,     // the line in time through (r0, q[r0][v]) and (r1, q[r1][v]), at f, rounded:
+                  // r0 = f-1, r1 = f-2 is constant velocity; r0 < f < r1 interpolates
+  Model = 3,      // a grid prediction the caller supplies (the PDE motion model, evaluated
+                  // on the grid by the integrator); both sides must supply the same values
+};
+constexpr uint8_t kPredictorKindCount = 4;
+
+// Spatial correction added to the base prediction, from vertices of the same frame that
+// are already decoded: the error the base prediction made on them is assumed to repeat.
+enum class SpatialMode : uint8_t {
+  Off = 0,
+  Mean = 1,           // rounded mean of the earlier neighbours' errors (Dynapack-style)
+  Parallelogram = 2,  // rounded mean over the vertex's decoded parallelograms (a, b, c) of
+                      // err(a) + err(b) - err(c): exact for any affine motion of the patch;
+                      // Mean where the vertex has no parallelogram
+  Blend = 3,          // rounded mean of the Mean and Parallelogram corrections: less noise
+                      // than Parallelogram, less bias than Mean on smooth deformation
+};
+constexpr uint8_t kSpatialModeCount = 4;
+
+// The predictor of one (frame, axis).
+struct PredictorChoice {
+  PredictorKind kind = PredictorKind::Reference;
+  uint32_t r0 = 0, r1 = 0;  // reference frames: Reference uses r0, Linear r0 and r1
+  SpatialMode spatial = SpatialMode::Parallelogram;
+};
+
+// Linear references lie within this many frames of f and of each other, so the integer
+// interpolation cannot overflow.
+constexpr uint32_t kMaxLinearSpan = 65535;
+
+// Order in which vertices are decoded within a frame and, for each position, the
+// neighbours that come earlier in that order (the ones a decoder already knows).
+struct Traversal {
+  std::vector<uint32_t> order;       // V vertex ids
+  std::vector<uint32_t> nb_offsets;  // V + 1; position i's earlier neighbours: nb[nb_offsets[i], nb_offsets[i+1])
+  std::vector<uint32_t> nb;          // vertex ids
+  // Position i's parallelograms: para[3 * k .. 3 * k + 2] = (a, b, c) for k in
+  // [para_offsets[i], para_offsets[i+1]); all three decoded before position i.
+  std::vector<uint32_t> para_offsets;
+  std::vector<uint32_t> para;
+  bool from_faces = false;
+};
+
+// Builds the traversal: breadth-first over the mesh edges when `model.faces` is present
+// (each component from its lowest vertex id; parallelograms are a face (v, a, b) and the
+// face across edge (a, b)), else along the curves (the earlier neighbour is the previous
+// vertex of the curve, the parallelogram (p1, p1, p2) extrapolates linearly along it).
+// Needs a validated model.
+Traversal build_traversal(const Model& model);
+
+// Extra inputs to the residual layer that are not in the payload.
+struct ResidualOptions {
+  // Model predictor values, frame-major ((f * V + v) * 3 + axis), grid units; null when
+  // the file has no motion model. Must be bit-identical on encoder and decoder.
+  const std::vector<int32_t>* model_prediction = nullptr;
+};
+
+// Whether `c` can be used for frame f: its reference frames are decoded (decoded[r] != 0,
+// decoded has frame_count entries) and distinct from f, Linear spans are bounded, supplied
+// data is present.
+bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
+                      const ResidualOptions& options);
+
+// Writes the base prediction of frame f, axis a for every vertex into base[v] (grid units).
+// q is frame-major with V vertices and holds the referenced frames; the choice must be usable.
+void base_prediction(const PredictorChoice& c, uint32_t f, int axis, uint32_t V, const int32_t* q,
+                     const ResidualOptions& options, int64_t* base);
+
+namespace detail {
+// floor((2 sum + count) / (2 count)): the mean rounded half up, identical on every platform.
+inline int64_t rounded_mean(int64_t sum, int64_t count) {
+  const int64_t num = 2 * sum + count, den = 2 * count;
+  return num >= 0 ? num / den : -((-num + den - 1) / den);
+}
+}  // namespace detail
+
+// The spatial correction of traversal position `pos` on `axis`: see SpatialMode. qf is
+// frame f's values (earlier positions decoded), base the base prediction of that axis.
+inline int64_t spatial_correction(SpatialMode mode, const Traversal& t, uint32_t pos, int axis,
+                                  const int32_t* qf, const int64_t* base) {
+  if (mode == SpatialMode::Off) return 0;
+  auto err = [&](uint32_t n) { return int64_t(qf[size_t(n) * 3 + size_t(axis)]) - base[n]; };
+  int64_t mean_sum = 0, para_sum = 0;
+  const uint32_t nb_begin = t.nb_offsets[pos], nb_end = t.nb_offsets[pos + 1];
+  for (uint32_t k = nb_begin; k < nb_end; ++k) mean_sum += err(t.nb[k]);
+  const int64_t nb_count = int64_t(nb_end - nb_begin);
+  const uint32_t p_begin = t.para_offsets[pos], p_end = t.para_offsets[pos + 1];
+  const int64_t para_count = int64_t(p_end - p_begin);
+  if (mode == SpatialMode::Mean || para_count == 0) return nb_count ? detail::rounded_mean(mean_sum, nb_count) : 0;
+  for (uint32_t k = p_begin; k < p_end; ++k)
+    para_sum += err(t.para[3 * size_t(k)]) + err(t.para[3 * size_t(k) + 1]) - err(t.para[3 * size_t(k) + 2]);
+  if (mode == SpatialMode::Parallelogram) return detail::rounded_mean(para_sum, para_count);
+  // Blend: (mean_sum / nb_count + para_sum / para_count) / 2 as one rounding.
+  return detail::rounded_mean(mean_sum * para_count + para_sum * nb_count, 2 * nb_count * para_count);
+}
+
+// Predictions (grid units) of the three axes of traversal position `pos`: base holds the
+// three axes' base predictions (3 * V, axis-major), qf the frame's values decoded so far.
+inline void vertex_prediction(const PredictorChoice* choice, const Traversal& t, uint32_t pos, uint32_t V,
+                              const int32_t* qf, const int64_t* base, int64_t pred[3]) {
+  const uint32_t v = t.order[pos];
+  for (int a = 0; a < 3; ++a) {
+    const int64_t* ba = base + size_t(a) * V;
+    pred[a] = ba[v] + spatial_correction(choice[a].spatial, t, pos, a, qf, ba);
+  }
+}
+
+}  // namespace dcurve

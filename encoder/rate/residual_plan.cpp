@@ -1,0 +1,277 @@
+#include "encoder/rate/residual_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdlib>
+
+namespace dcurve {
+namespace {
+
+constexpr int kClasses = 2 * 41 + 1;
+
+// Estimated bits of a residual when choosing among admissible grid points: what an
+// adaptive exponent coder roughly pays.
+int residual_cost(int64_t r) {
+  if (r == 0) return 0;
+  uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
+  int e = 0;
+  while (m >>= 1) ++e;
+  return 2 + 2 * e;
+}
+
+double distance2(const ResidualLayer& layer, const float* x, const int64_t* k) {
+  double d2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double d = double(grid_to_model(layer, a, k[a])) - double(x[a]);
+    d2 += d * d;
+  }
+  return d2;
+}
+
+// Moves qv (the vertex's three grid values) to the admissible grid point (decoded within
+// radius of x) with the lowest score: estimated bits against `pred`, plus
+// distance_weight * (distance / radius)^2 bits, since a point near the input predicts
+// later frames better; keeps qv when no other point qualifies.
+void snap_vertex(const ResidualLayer& layer, const float* x, double radius, double distance_weight,
+                 const int64_t* pred, int32_t* qv) {
+  const double r2 = radius * radius;
+  auto score = [&](const int64_t* k, double d2) {
+    return residual_cost(k[0] - pred[0]) + residual_cost(k[1] - pred[1]) + residual_cost(k[2] - pred[2]) +
+           distance_weight * d2 / r2;
+  };
+  // Any nonzero residual costs at least 2: below that weight an admissible prediction wins.
+  if (distance_weight < 2 && distance2(layer, x, pred) <= r2) {
+    for (int a = 0; a < 3; ++a) qv[a] = int32_t(pred[a]);  // admissible, so within int32 range
+    return;
+  }
+  int64_t lo[3], hi[3], k[3], best[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = int64_t(std::floor((double(x[a]) - radius - layer.origin[a]) / layer.step));
+    hi[a] = int64_t(std::ceil((double(x[a]) + radius - layer.origin[a]) / layer.step));
+    best[a] = qv[a];
+  }
+  double best_score = score(best, distance2(layer, x, best));
+  for (k[0] = lo[0]; k[0] <= hi[0]; ++k[0])
+    for (k[1] = lo[1]; k[1] <= hi[1]; ++k[1])
+      for (k[2] = lo[2]; k[2] <= hi[2]; ++k[2]) {
+        const double d2 = distance2(layer, x, k);
+        if (d2 > r2) continue;
+        const double sc = score(k, d2);
+        if (sc < best_score) {
+          best_score = sc;
+          std::copy(k, k + 3, best);
+        }
+      }
+  for (int a = 0; a < 3; ++a)
+    if (best[a] >= INT32_MIN && best[a] <= INT32_MAX) qv[a] = int32_t(best[a]);
+}
+
+// Class of the earlier neighbours' residual magnitudes on `axis` (0..3, 4 for none):
+// lets the estimate see that clustered residuals are cheaper to code than scattered ones.
+int neighbour_class(const Traversal& t, uint32_t pos, int axis, const std::vector<uint8_t>& magnitude) {
+  const uint32_t begin = t.nb_offsets[pos], end = t.nb_offsets[pos + 1];
+  if (begin == end) return 4;
+  uint32_t sum = 0;
+  for (uint32_t k = begin; k < end; ++k) sum += magnitude[size_t(t.nb[k]) * 3 + size_t(axis)];
+  const uint32_t mean = (sum + (end - begin) - 1) / (end - begin);
+  return int(std::min<uint32_t>(mean, 3));
+}
+
+// Decoded frames most similar to frame f (sum of absolute grid differences on a sample
+// of values), other than the ones always tried.
+std::vector<uint32_t> similar_frames(const std::vector<int32_t>& q, uint32_t V, uint32_t f,
+                                     const std::vector<uint8_t>& decoded, const std::vector<uint32_t>& tried,
+                                     const ResidualPlanOptions& po) {
+  const size_t stride = size_t(V) * 3, sample = std::max<size_t>(1, stride / 4096);
+  std::vector<std::pair<uint64_t, uint32_t>> scored;
+  for (uint32_t r = 0; r < decoded.size(); ++r) {
+    if (!decoded[r] || std::find(tried.begin(), tried.end(), r) != tried.end()) continue;
+    if ((r > f ? r - f : f - r) > po.max_reference_distance) continue;
+    const int32_t* a = q.data() + size_t(f) * stride;
+    const int32_t* b = q.data() + size_t(r) * stride;
+    uint64_t sum = 0;
+    for (size_t i = 0; i < stride; i += sample) sum += uint64_t(std::llabs(int64_t(a[i]) - b[i]));
+    scored.emplace_back(sum, r);
+  }
+  const size_t keep = std::min<size_t>(po.extra_references, scored.size());
+  std::partial_sort(scored.begin(), scored.begin() + std::ptrdiff_t(keep), scored.end());
+  std::vector<uint32_t> out;
+  for (size_t k = 0; k < keep; ++k) out.push_back(scored[k].second);
+  return out;
+}
+
+// Time order when gop is 1; otherwise every gop-th frame (and the last) in time order,
+// each followed by the frames before it down to the previous key, coded by recursive
+// midpoints so that each is interpolated between two decoded frames.
+std::vector<uint32_t> coding_order(uint32_t F, uint32_t gop) {
+  std::vector<uint32_t> order;
+  if (F == 0) return order;
+  order.push_back(0);
+  struct Range { uint32_t lo, hi; };
+  for (uint32_t key = 0; key + 1 < F;) {
+    const uint32_t next = std::min(F - 1, key + std::max(gop, 1u));
+    order.push_back(next);
+    std::vector<Range> stack{{key, next}};
+    while (!stack.empty()) {
+      const Range r = stack.back();
+      stack.pop_back();
+      if (r.hi - r.lo < 2) continue;
+      const uint32_t mid = r.lo + (r.hi - r.lo) / 2;
+      order.push_back(mid);
+      stack.push_back({mid, r.hi});
+      stack.push_back({r.lo, mid});
+    }
+    key = next;
+  }
+  return order;
+}
+
+// Candidates for frame f given the decoded frames: self (None), nearest decoded frames on
+// each side, interpolation between them, extrapolation from the two nearest before, the
+// most similar decoded poses, the model; each with every allowed spatial mode.
+std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint32_t V, uint32_t f,
+                                            const std::vector<uint8_t>& decoded, const ResidualOptions& options,
+                                            const ResidualPlanOptions& po) {
+  const uint32_t F = uint32_t(decoded.size()), none = UINT32_MAX;
+  uint32_t below = none, below2 = none, above = none;
+  for (uint32_t r = f; r-- > 0;)
+    if (decoded[r]) {
+      if (below == none) below = r;
+      else { below2 = r; break; }
+    }
+  for (uint32_t r = f + 1; r < F; ++r)
+    if (decoded[r]) { above = r; break; }
+  std::vector<PredictorChoice> out;
+  auto add = [&](PredictorKind kind, uint32_t r0, uint32_t r1) {
+    if (!(po.kinds >> int(kind) & 1)) return;
+    for (SpatialMode s : {SpatialMode::Off, SpatialMode::Mean, SpatialMode::Parallelogram, SpatialMode::Blend}) {
+      const PredictorChoice c{kind, r0, r1, s};
+      if (po.spatial_modes >> int(s) & 1 && predictor_usable(c, f, decoded, options)) out.push_back(c);
+    }
+  };
+  add(PredictorKind::None, 0, 0);
+  std::vector<uint32_t> tried;
+  for (uint32_t r : {below, above})
+    if (r != none) {
+      add(PredictorKind::Reference, r, 0);
+      tried.push_back(r);
+    }
+  if (below != none && above != none) add(PredictorKind::Linear, below, above);
+  if (below != none && below2 != none) add(PredictorKind::Linear, below, below2);
+  for (uint32_t r : similar_frames(q, V, f, decoded, tried, po)) add(PredictorKind::Reference, r, 0);
+  if (options.model_prediction) add(PredictorKind::Model, 0, 0);
+  if (out.empty()) out.push_back({PredictorKind::None, 0, 0, SpatialMode::Off});
+  return out;
+}
+
+}  // namespace
+
+double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::vector<uint8_t>& contexts) {
+  std::vector<std::vector<uint64_t>> hist;
+  std::vector<uint64_t> count;
+  double mantissa = 0;
+  for (size_t i = 0; i < residuals.size(); ++i) {
+    const size_t c = contexts[i];
+    if (c >= hist.size()) {
+      hist.resize(c + 1, std::vector<uint64_t>(kClasses, 0));
+      count.resize(c + 1, 0);
+    }
+    ++count[c];
+    const int64_t r = residuals[i];
+    if (r == 0) { ++hist[c][0]; continue; }
+    uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
+    int e = 0;
+    while (m >>= 1) ++e;
+    e = std::min(e, 40);
+    mantissa += e;
+    ++hist[c][size_t(1 + 2 * e + (r < 0))];
+  }
+  double bits = mantissa;
+  for (size_t c = 0; c < hist.size(); ++c)
+    for (uint64_t h : hist[c])
+      if (h) bits -= double(h) * std::log2(double(h) / double(count[c]));
+  return bits;
+}
+
+namespace {
+
+// Chooses predictors and grid values for one coding order; returns the estimated bits.
+double plan_for_order(const Model& model, const Traversal& trav, const std::vector<std::vector<float>>& frames,
+                      double radius, const std::vector<uint32_t>& order, const ResidualOptions& options,
+                      const ResidualPlanOptions& po, std::vector<int32_t>* q, PredictorPlan* plan) {
+  const uint32_t V = model.meta.vertex_count, F = model.meta.frame_count;
+  const size_t stride = size_t(V) * 3;
+  plan->order = order;
+  plan->choices.assign(size_t(F) * 3, PredictorChoice());
+  std::vector<uint8_t> decoded(F, 0);
+  std::vector<int64_t> base(stride), residuals(stride);
+  std::vector<uint8_t> contexts(stride), magnitude(stride);  // magnitude: by vertex, clamped
+  std::vector<int32_t> scratch(stride), best_frame(stride);
+  double total = 0;
+  for (uint32_t f : order) {
+    int32_t* qf = q->data() + size_t(f) * stride;
+    double best = HUGE_VAL;
+    for (const PredictorChoice& c : candidates_for(*q, V, f, decoded, options, po)) {
+      const PredictorChoice choice[3] = {c, c, c};
+      for (int a = 0; a < 3; ++a) base_prediction(c, f, a, V, q->data(), options, &base[size_t(a) * V]);
+      std::copy(qf, qf + stride, scratch.begin());
+      for (uint32_t pos = 0; pos < V; ++pos) {
+        const uint32_t v = trav.order[pos];
+        int64_t pred[3];
+        vertex_prediction(choice, trav, pos, V, scratch.data(), base.data(), pred);
+        int32_t* qv = &scratch[size_t(v) * 3];
+        if (po.snap) snap_vertex(model.residual, &frames[f][size_t(v) * 3], radius, po.distance_weight, pred, qv);
+        uint8_t axis_max = 0;
+        for (int a = 0; a < 3; ++a) {
+          const int64_t r = int64_t(qv[a]) - pred[a];
+          const size_t i = size_t(pos) * 3 + size_t(a);
+          residuals[i] = r;
+          contexts[i] = uint8_t(neighbour_class(trav, pos, a, magnitude) * 3 + std::min<uint8_t>(axis_max, 2));
+          magnitude[size_t(v) * 3 + size_t(a)] = uint8_t(std::min<int64_t>(r < 0 ? -r : r, 255));
+          axis_max = std::max(axis_max, magnitude[size_t(v) * 3 + size_t(a)]);
+        }
+      }
+      const double bits = estimate_residual_bits(residuals, contexts);
+      if (bits < best) {
+        best = bits;
+        best_frame.swap(scratch);
+        for (int a = 0; a < 3; ++a) plan->choices[size_t(f) * 3 + size_t(a)] = c;
+      }
+    }
+    std::copy(best_frame.begin(), best_frame.end(), qf);
+    decoded[f] = 1;
+    total += best;
+  }
+  return total;
+}
+
+}  // namespace
+
+PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
+                                   double max_distance, std::vector<int32_t>* q, const ResidualOptions& options,
+                                   const ResidualPlanOptions& po) {
+  const Traversal trav = build_traversal(model);
+  // A hair inside the bound, so rounding in the error measurement cannot push it over.
+  const double radius = max_distance * (1.0 - 1e-9);
+  PredictorPlan best_plan;
+  std::vector<int32_t> best_q;
+  double best = HUGE_VAL;
+  for (uint32_t gop : po.gop_sizes) {
+    std::vector<int32_t> trial(*q);
+    PredictorPlan plan;
+    plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, gop), options, po, &trial, &plan);
+    // The order is judged by the coded size: the estimate that ranks predictors within a
+    // frame ignores the contexts, which favour some orders.
+    const double bits = double(encode_residuals(model, trial, &plan, options).size());
+    if (bits < best) {
+      best = bits;
+      best_plan = std::move(plan);
+      best_q.swap(trial);
+    }
+  }
+  q->swap(best_q);
+  return best_plan;
+}
+
+}  // namespace dcurve

@@ -1,0 +1,54 @@
+// Encoder-side choice of the residual predictors: for every frame and axis, the predictor
+// (codec/predictors.h) whose residuals are estimated to cost the fewest bits.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "codec/model.h"
+#include "codec/residual.h"
+
+namespace dcurve {
+
+struct ResidualPlanOptions {
+  // Decoded frames tried as a reference besides the nearest ones, picked by the smallest
+  // difference to the frame being coded (animations repeat their poses). >= 0.
+  uint32_t extra_references = 3;
+  // How far back reference frames are searched, frames, >= 1.
+  uint32_t max_reference_distance = 1024;
+  // Coding orders tried (the cheapest estimate wins): 1 is time order; g > 1 codes every
+  // g-th frame first and the frames between by recursive midpoints. Not empty; each >= 1.
+  std::vector<uint32_t> gop_sizes = {1, 2, 4, 8, 16};
+  // Choose grid values within the tolerance (true) or keep the rounded ones (false).
+  bool snap = true;
+  // Bits charged for snapping to the edge of the tolerance ball (scaled by the squared
+  // distance): trades this frame's bits against the accuracy later predictions start from.
+  double distance_weight = 0.0;
+  // Candidate predictors: bit (1 << PredictorKind) and bit (1 << SpatialMode) allowed.
+  // Frames no allowed kind can serve (frame 0 without None or Model...) fall back to None
+  // without spatial correction. For tests and studies.
+  uint32_t kinds = ~0u;
+  uint32_t spatial_modes = ~0u;
+};
+
+// Estimated cost, bits, of coding `residuals` with an adaptive integer coder: their
+// order-0 entropy over exponent classes within each context (contexts[i] < 256, same
+// length as residuals) plus the raw mantissa bits. Ranks predictors; does not predict
+// file sizes exactly.
+double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::vector<uint8_t>& contexts);
+
+// Chooses the coding order, the predictor of every frame (the same for its three axes) and, when
+// plan_options.snap is set, the grid values themselves: of the grid points whose decoded
+// position lies within max_distance of the input vertex, the one cheapest to code against
+// its prediction (the decoder reproduces any grid value exactly, so the error bound holds
+// by construction). Frames are walked in coding order, so predictions see chosen values.
+//   frames: input positions, model units, one V * 3 vector per frame.
+//   max_distance: model units (tolerance * L), > 0.
+//   q: in, the rounded grid values (frame-major, within max_distance); out, the chosen ones.
+// model supplies counts, faces, curves and the grid (model.residual step and origin).
+// Deterministic; cost O(F * candidates * (V + edges)).
+PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
+                                   double max_distance, std::vector<int32_t>* q,
+                                   const ResidualOptions& options = {},
+                                   const ResidualPlanOptions& plan_options = {});
+
+}  // namespace dcurve
