@@ -115,8 +115,9 @@ TEST(SimScene, BadSceneFilesNameTheFileAndTheProblem) {
     const bool ok = load_scene_file((dir / "bad.json").string(), &s, &err) && simulate_scene(s, &anim, {}, &err);
     EXPECT_FALSE(ok) << text;
     EXPECT_NE(err.find(expect), std::string::npos) << text << " -> " << err;
-    if (err.find("missing.obj") == std::string::npos && err.find("holds no particle") == std::string::npos)
+    if (err.find("missing.obj") == std::string::npos && err.find("holds no particle") == std::string::npos) {
       EXPECT_NE(err.find("bad.json"), std::string::npos) << err;
+    }
   }
   Scene s;
   std::string err;
