@@ -19,6 +19,14 @@ Scene builtin(const std::string& name) {
   return s;
 }
 
+// The heavier tests take seconds optimized and minutes in an unoptimized sanitizer build,
+// which would blow the suite's time budget; there they skip, saying so.
+#ifdef __OPTIMIZE__
+constexpr bool kOptimized = true;
+#else
+constexpr bool kOptimized = false;
+#endif
+
 // The cantilever at test size: half the grid resolution of the built-in scene.
 Scene small_bar() {
   Scene s = builtin("cantilever");
@@ -97,6 +105,7 @@ TEST(SimPhysics, BarSagsStaysAboveGroundAndComesToRest) {
 }
 
 TEST(SimPhysics, SettledSagIndependentOfSubstepsAndIterations) {
+  if (!kOptimized) GTEST_SKIP() << "about 1000 simulated frames: run it in an optimized build";
   for (const Scene& s : {small_bar(), small_rope()}) {
     const int n = s.substeps;
     const double base = settled_sag(s, n, 5);
@@ -122,6 +131,7 @@ double enclosed_volume(const std::vector<float>& x, const std::vector<uint32_t>&
 }
 
 TEST(SimPhysics, SoftBlobKeepsItsVolumeThroughTheImpact) {
+  if (!kOptimized) GTEST_SKIP() << "1400 tets for 40 frames: run it in an optimized build";
   Scene s = builtin("blob");
   s.generator["divisions"] = 6;
   s.material.volume_compliance = 1e-7;  // bulk modulus 10 MPa against a 50 kPa Young's modulus
