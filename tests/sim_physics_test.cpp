@@ -19,6 +19,20 @@ Scene builtin(const std::string& name) {
   return s;
 }
 
+// The two heavier tests take seconds in a plain optimized build but one to several minutes
+// under a sanitizer or without optimization, which would blow the suite's time budget. They
+// run no code the lighter tests here do not, so there they skip, saying so.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)  // clang's spelling of __SANITIZE_ADDRESS__
+#define DCURVE_SIM_TEST_SANITIZED
+#endif
+#endif
+#if defined(__OPTIMIZE__) && !defined(__SANITIZE_ADDRESS__) && !defined(DCURVE_SIM_TEST_SANITIZED)
+constexpr bool kOptimized = true;
+#else
+constexpr bool kOptimized = false;
+#endif
+
 // The cantilever at test size: half the grid resolution of the built-in scene.
 Scene small_bar() {
   Scene s = builtin("cantilever");
@@ -53,7 +67,7 @@ double tip_sag(const SceneSimulation& sim) {
   return (sum / n).norm();
 }
 
-// Runs until the kinetic energy has fallen below 1e-7 J (at most 150 frames) and returns
+// Runs until the kinetic energy has fallen below 1e-6 J (at most 150 frames) and returns
 // the tip sag. Damping is raised so the test settles quickly; it does not move the
 // equilibrium.
 double settled_sag(Scene s, int substeps, int iterations) {
@@ -65,7 +79,7 @@ double settled_sag(Scene s, int substeps, int iterations) {
   EXPECT_TRUE(sim.init(s, &err)) << err;
   for (int f = 0; f < 150; ++f) {
     EXPECT_TRUE(sim.advance_frame(&err)) << err;
-    if (f > 20 && sim.solver().kinetic_energy() < 1e-7) break;
+    if (f > 20 && sim.solver().kinetic_energy() < 1e-6) break;
   }
   return tip_sag(sim);
 }
@@ -97,6 +111,7 @@ TEST(SimPhysics, BarSagsStaysAboveGroundAndComesToRest) {
 }
 
 TEST(SimPhysics, SettledSagIndependentOfSubstepsAndIterations) {
+  if (!kOptimized) GTEST_SKIP() << "about 1000 simulated frames: run it in an optimized, unsanitized build";
   for (const Scene& s : {small_bar(), small_rope()}) {
     const int n = s.substeps;
     const double base = settled_sag(s, n, 5);
@@ -122,6 +137,7 @@ double enclosed_volume(const std::vector<float>& x, const std::vector<uint32_t>&
 }
 
 TEST(SimPhysics, SoftBlobKeepsItsVolumeThroughTheImpact) {
+  if (!kOptimized) GTEST_SKIP() << "1400 tets for 40 frames: run it in an optimized, unsanitized build";
   Scene s = builtin("blob");
   s.generator["divisions"] = 6;
   s.material.volume_compliance = 1e-7;  // bulk modulus 10 MPa against a 50 kPa Young's modulus
@@ -183,8 +199,11 @@ TEST(SimPhysics, HandleTwistsAndLiftsTheNeckTop) {
     ++top;
   }
   EXPECT_GT(top, 0);
-  for (size_t i = 0; i < x.size(); ++i)
-    if (rest[i].y() <= 0) EXPECT_EQ(x[i], rest[i]);  // the base is pinned
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (rest[i].y() <= 0) {
+      EXPECT_EQ(x[i], rest[i]);  // the base is pinned
+    }
+  }
 }
 
 }  // namespace

@@ -115,8 +115,9 @@ TEST(SimScene, BadSceneFilesNameTheFileAndTheProblem) {
     const bool ok = load_scene_file((dir / "bad.json").string(), &s, &err) && simulate_scene(s, &anim, {}, &err);
     EXPECT_FALSE(ok) << text;
     EXPECT_NE(err.find(expect), std::string::npos) << text << " -> " << err;
-    if (err.find("missing.obj") == std::string::npos && err.find("holds no particle") == std::string::npos)
+    if (err.find("missing.obj") == std::string::npos && err.find("holds no particle") == std::string::npos) {
       EXPECT_NE(err.find("bad.json"), std::string::npos) << err;
+    }
   }
   Scene s;
   std::string err;
@@ -140,6 +141,14 @@ TEST(SimScene, CommandLine) {
   EXPECT_EQ(run((dir / "nope.json").string() + " -o " + (dir / "x").string(), log), 1);
   EXPECT_NE(read_text(log).find("nope.json"), std::string::npos);
   EXPECT_EQ(run("--scene nope -o " + (dir / "x").string(), log), 1);
+  // An open surface (an octahedron missing a face) is bad input, not a crash.
+  write_text(dir / "open.obj",
+             "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
+             "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\n");
+  write_text(dir / "open.json", R"({"mesh": {"file": "open.obj"}})");
+  EXPECT_EQ(run((dir / "open.json").string() + " -o " + (dir / "x").string(), log), 1);
+  EXPECT_NE(read_text(log).find("open.obj"), std::string::npos) << read_text(log);
+  EXPECT_NE(read_text(log).find("not closed"), std::string::npos) << read_text(log);
   EXPECT_EQ(run("--scene cantilever --frames 3 -o " + (dir / "out").string(), log), 0) << read_text(log);
   EXPECT_TRUE(fs::exists(dir / "out" / "frame_00000.obj"));
   EXPECT_TRUE(fs::exists(dir / "out" / "frame_00002.obj"));

@@ -16,7 +16,7 @@
 namespace {
 
 // across = 4: "rope-small"; 8: "rope"; otherwise "rope" re-gridded to `across` cells across
-// its 8 cm section, substeps by the corpus rule (10 per cell across).
+// its 8 cm section, substeps by the corpus rule (15 per cell across).
 dcurve::Scene rope(int across) {
   dcurve::Scene s;
   std::string err;
@@ -29,7 +29,7 @@ dcurve::Scene rope(int across) {
   s.mesh_translate = {length / 2, 0, 0};
   s.tet_max_volume = cell * cell * cell;
   s.ground_height = -1.1 * length;
-  s.substeps = 10 * across;
+  s.substeps = 15 * across;
   return s;
 }
 

@@ -64,8 +64,8 @@ struct Scene {
   std::vector<Handle> handles;     // pins and kinematic handles
   int frames = 60;                 // output frames including frame 0 (the rest pose), >= 1
   double fps = 30;                 // frames per second, > 0
-  int substeps = 20;               // XPBD substeps per frame, >= 1
-  int iterations = 2;              // constraint iterations per substep, >= 1
+  int substeps = 40;               // XPBD substeps per frame, >= 1
+  int iterations = 1;              // constraint iterations per substep, >= 1
 };
 
 // Parses a scene from JSON; relative mesh paths resolve against `base_dir`.

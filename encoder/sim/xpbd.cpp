@@ -6,6 +6,35 @@
 #include <cmath>
 
 namespace dcurve {
+namespace {
+
+// Tet ids sorted along a Morton (Z-order) curve of their centroids: Gauss-Seidel then sweeps
+// through space, so the particles it touches are still in cache from the previous tets.
+std::vector<size_t> spatial_order(const TetMesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const auto& p : mesh.points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double extent = std::max((hi - lo).maxCoeff(), 1e-300);
+  std::vector<std::pair<uint64_t, size_t>> keyed(mesh.tets.size());
+  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k) c += mesh.points[mesh.tets[t][k]];
+    uint64_t key = 0;
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t q = uint64_t(std::clamp((c[k] / 4 - lo[k]) / extent, 0.0, 1.0) * 2097151.0);  // 21 bits
+      for (int bit = 0; bit < 21; ++bit) key |= ((q >> bit) & 1u) << (3 * bit + k);
+    }
+    keyed[t] = {key, t};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<size_t> order(keyed.size());
+  for (size_t t = 0; t < keyed.size(); ++t) order[t] = keyed[t].second;
+  return order;
+}
+
+}  // namespace
 
 bool XpbdSolver::init(const TetMesh& mesh, const Material& material, const XpbdWorld& world, std::string* error) {
   material_ = material;
@@ -22,7 +51,7 @@ bool XpbdSolver::init(const TetMesh& mesh, const Material& material, const XpbdW
   std::vector<double> mass(x_.size(), 0.0);
   tets_.clear();
   tets_.reserve(mesh.tets.size());
-  for (size_t t = 0; t < mesh.tets.size(); ++t) {
+  for (size_t t : spatial_order(mesh)) {
     Tet tet;
     for (int k = 0; k < 4; ++k) tet.id[k] = mesh.tets[t][k];
     Eigen::Matrix3d dm;
