@@ -85,16 +85,22 @@ struct Truth {
   double time_param, space_param;  // float-representable, so the stored parameters are exact
 };
 
+// Random coefficients per axis (into coeffs) and the curve they generate under `t`.
+CurveFrames curve_from_truth(const Truth& t, std::mt19937& rng, size_t points, size_t frames,
+                             std::vector<double> coeffs[3]) {
+  for (int a = 0; a < 3; ++a) coeffs[a] = random_coeffs(rng, basis_term_count(t.basis));
+  return make_curve(points, frames, [&](int a, double tau, double u) {
+    return motion_value(t.basis, t.basis_case, t.time_param, t.space_param, coeffs[a], tau, u);
+  });
+}
+
 TEST(FitCore, RecoversKnownCoefficientsAtKnownParameters) {
   std::mt19937 rng(7);
   const Truth cases[] = {{Basis::Pde8, 0, 3.25, 5.5}, {Basis::Pde8, 1, 0.0, 2.75}, {Basis::Pde8, 2, 6.5, 0.0},
                          {Basis::Pde8, 3, 12.5, 20.0}, {Basis::Pde32, 0, 2.5, 6.0}, {Basis::Pde32, 0, 9.5, 11.0}};
   for (const Truth& t : cases) {
     std::vector<double> coeffs[3];
-    for (auto& c : coeffs) c = random_coeffs(rng, basis_term_count(t.basis));
-    CurveFrames curve = make_curve(30, 7, [&](int a, double tau, double u) {
-      return motion_value(t.basis, t.basis_case, t.time_param, t.space_param, coeffs[a], tau, u);
-    });
+    CurveFrames curve = curve_from_truth(t, rng, 30, 7, coeffs);
     FitOptions o;
     o.basis = t.basis;
     o.fixed_case = t.basis_case;
@@ -117,10 +123,7 @@ TEST(FitCore, SearchFindsTheGeneratingCaseAndParameters) {
   const Truth cases[] = {{Basis::Pde8, 2, 3.25, 5.5}, {Basis::Pde8, 1, 1.5, 9.0}, {Basis::Pde32, 0, 2.5, 6.0}};
   for (const Truth& t : cases) {
     std::vector<double> coeffs[3];
-    for (auto& c : coeffs) c = random_coeffs(rng, basis_term_count(t.basis));
-    CurveFrames curve = make_curve(40, 9, [&](int a, double tau, double u) {
-      return motion_value(t.basis, t.basis_case, t.time_param, t.space_param, coeffs[a], tau, u);
-    });
+    CurveFrames curve = curve_from_truth(t, rng, 40, 9, coeffs);
     FitOptions o;
     o.basis = t.basis;
     o.refined_cases = 4;

@@ -23,24 +23,26 @@ void ScaledRange::compute(const Eigen::MatrixXd& a, bool want_pinv) {
   }
 }
 
-Eigen::MatrixXd space_design(Basis b, int basis_case, double space_param, const Eigen::VectorXd& u) {
-  Eigen::MatrixXd m(u.size(), basis_space_count(b));
+namespace {
+// basis_space and basis_time share one signature: sample either on the points x.
+using BasisFn = void (*)(Basis, int, double, double, double*);
+Eigen::MatrixXd sample_design(BasisFn fn, int count, Basis b, int basis_case, double param, const Eigen::VectorXd& x) {
+  Eigen::MatrixXd m(x.size(), count);
   double out[8];
-  for (Eigen::Index p = 0; p < u.size(); ++p) {
-    basis_space(b, basis_case, space_param, u(p), out);
-    for (Eigen::Index j = 0; j < m.cols(); ++j) m(p, j) = out[j];
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    fn(b, basis_case, param, x(k), out);
+    for (Eigen::Index j = 0; j < count; ++j) m(k, j) = out[j];
   }
   return m;
 }
+}  // namespace
+
+Eigen::MatrixXd space_design(Basis b, int basis_case, double space_param, const Eigen::VectorXd& u) {
+  return sample_design(basis_space, basis_space_count(b), b, basis_case, space_param, u);
+}
 
 Eigen::MatrixXd time_design(Basis b, int basis_case, double time_param, const Eigen::VectorXd& tau) {
-  Eigen::MatrixXd m(tau.size(), basis_time_count(b));
-  double out[4];
-  for (Eigen::Index f = 0; f < tau.size(); ++f) {
-    basis_time(b, basis_case, time_param, tau(f), out);
-    for (Eigen::Index i = 0; i < m.cols(); ++i) m(f, i) = out[i];
-  }
-  return m;
+  return sample_design(basis_time, basis_time_count(b), b, basis_case, time_param, tau);
 }
 
 Eigen::VectorXd projection_residual(const ScaledRange& space, const ScaledRange& time, const Eigen::MatrixXd& w) {
