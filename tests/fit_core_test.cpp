@@ -303,6 +303,29 @@ TEST(FitCore, ResultsDoNotDependOnThreadCount) {
     }
 }
 
+TEST(FitCore, TinyCurvesAndSingleFramesAreFittedExactly) {
+  // Fewer points or frames than functions: the minimum-norm solution interpolates.
+  for (size_t points : {1, 2, 3})
+    for (size_t frames : {1, 2})
+      for (Basis b : {Basis::Pde8, Basis::Pde32}) {
+        CurveFrames c = make_curve(std::max<size_t>(points, 2), frames, [](int a, double tau, double u) {
+          return std::sin(3 * u + a) + tau;
+        });
+        if (points == 1) {  // one point at u = 0.4
+          c.u = {0.4};
+          std::vector<double> xyz;
+          for (size_t f = 0; f < frames; ++f) xyz.insert(xyz.end(), c.xyz.begin() + long(f * 6), c.xyz.begin() + long(f * 6 + 3));
+          c.xyz = xyz;
+        }
+        FitOptions o;
+        o.basis = b;
+        CurveFit fit;
+        std::string error;
+        ASSERT_TRUE(fit_curve(c, o, &fit, &error)) << error;
+        EXPECT_LT(fit.max_error, 1e-5) << points << " points, " << frames << " frames, basis " << int(b);
+      }
+}
+
 TEST(FitCore, RejectsBadInput) {
   CurveFrames c = make_curve(5, 3, [](int, double tau, double u) { return u + tau; });
   FitOptions o;
