@@ -84,6 +84,7 @@ AxisFit solve_axis(const Eigen::MatrixXd& w, const Eigen::VectorXd& u, const Eig
 void evaluate_curve_fit(const CurveFit& fit, const std::vector<double>& u, const std::vector<double>& rest,
                         double tau, double* xyz) {
   const size_t P = u.size();
+  const bool add_rest = fit.mode == FitMode::Displacement && rest.size() == P * 3;
   for (int a = 0; a < 3; ++a) {
     const CurveMotion& m = fit.axis[a].motion;
     const int nt = basis_time_count(m.basis), ns = basis_space_count(m.basis);
@@ -99,7 +100,7 @@ void evaluate_curve_fit(const CurveFit& fit, const std::vector<double>& u, const
         basis_space(m.basis, m.basis_case, m.space_param, u[p], s);
         for (int j = 0; j < ns; ++j) w += row[j] * s[j];
       }
-      if (fit.mode == FitMode::Displacement) w += rest[p * 3 + size_t(a)];
+      if (add_rest) w += rest[p * 3 + size_t(a)];
       xyz[p * 3 + size_t(a)] = w;
     }
   }
