@@ -1,5 +1,8 @@
 #include "encoder/fit/projection.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "codec/basis.h"
 
 namespace dcurve {
@@ -11,6 +14,17 @@ void ScaledRange::compute(const Eigen::MatrixXd& a, bool want_pinv) {
     scale(j) = n > 0 ? 1.0 / n : 1.0;
   }
   Eigen::MatrixXd scaled = a * scale.asDiagonal();
+  if (!want_pinv) {
+    // The search needs only the range: a pivoted QR gives it at a fraction of the SVD's cost;
+    // the diagonal of R, relative to its first entry, decides the rank as the singular values do.
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
+    const Eigen::Index k = std::min(scaled.rows(), scaled.cols());
+    Eigen::Index rank = 0;
+    const double r0 = k > 0 ? std::abs(qr.matrixR()(0, 0)) : 0.0;
+    while (rank < k && std::abs(qr.matrixR()(rank, rank)) > r0 * 1e-11) ++rank;
+    q = qr.householderQ() * Eigen::MatrixXd::Identity(scaled.rows(), rank);
+    return;
+  }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
   Eigen::Index rank = 0;
