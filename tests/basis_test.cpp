@@ -169,24 +169,19 @@ double worst_projection_residual(const Eigen::MatrixXd& basis, const Eigen::Matr
   return worst;
 }
 
-Eigen::MatrixXd sample_space(Basis b, int c, double p, int n) {
-  Eigen::MatrixXd m(n, basis_space_count(b));
+// Samples of the space (or time) functions at n equally spaced points of [0, 1].
+using BasisFn = void (*)(Basis, int, double, double, double*);
+Eigen::MatrixXd sample(BasisFn fn, int count, Basis b, int c, double p, int n) {
+  Eigen::MatrixXd m(n, count);
   for (int k = 0; k < n; ++k) {
     double out[8];
-    basis_space(b, c, p, double(k) / (n - 1), out);
-    for (int j = 0; j < m.cols(); ++j) m(k, j) = out[j];
+    fn(b, c, p, double(k) / (n - 1), out);
+    for (int j = 0; j < count; ++j) m(k, j) = out[j];
   }
   return m;
 }
-Eigen::MatrixXd sample_time(Basis b, int c, double p, int n) {
-  Eigen::MatrixXd m(n, basis_time_count(b));
-  for (int k = 0; k < n; ++k) {
-    double out[4];
-    basis_time(b, c, p, double(k) / (n - 1), out);
-    for (int j = 0; j < m.cols(); ++j) m(k, j) = out[j];
-  }
-  return m;
-}
+Eigen::MatrixXd sample_space(Basis b, int c, double p, int n) { return sample(basis_space, basis_space_count(b), b, c, p, n); }
+Eigen::MatrixXd sample_time(Basis b, int c, double p, int n) { return sample(basis_time, basis_time_count(b), b, c, p, n); }
 // The papers' raw functions, sampled like the stable ones.
 Eigen::MatrixXd sample_raw(const std::vector<Fn>& fns, int n) {
   Eigen::MatrixXd m(n, int(fns.size()));

@@ -85,16 +85,22 @@ struct Truth {
   double time_param, space_param;  // float-representable, so the stored parameters are exact
 };
 
+// Random coefficients per axis (into coeffs) and the curve they generate under `t`.
+CurveFrames curve_from_truth(const Truth& t, std::mt19937& rng, size_t points, size_t frames,
+                             std::vector<double> coeffs[3]) {
+  for (int a = 0; a < 3; ++a) coeffs[a] = random_coeffs(rng, basis_term_count(t.basis));
+  return make_curve(points, frames, [&](int a, double tau, double u) {
+    return motion_value(t.basis, t.basis_case, t.time_param, t.space_param, coeffs[a], tau, u);
+  });
+}
+
 TEST(FitCore, RecoversKnownCoefficientsAtKnownParameters) {
   std::mt19937 rng(7);
   const Truth cases[] = {{Basis::Pde8, 0, 3.25, 5.5}, {Basis::Pde8, 1, 0.0, 2.75}, {Basis::Pde8, 2, 6.5, 0.0},
                          {Basis::Pde8, 3, 12.5, 20.0}, {Basis::Pde32, 0, 2.5, 6.0}, {Basis::Pde32, 0, 9.5, 11.0}};
   for (const Truth& t : cases) {
     std::vector<double> coeffs[3];
-    for (auto& c : coeffs) c = random_coeffs(rng, basis_term_count(t.basis));
-    CurveFrames curve = make_curve(30, 7, [&](int a, double tau, double u) {
-      return motion_value(t.basis, t.basis_case, t.time_param, t.space_param, coeffs[a], tau, u);
-    });
+    CurveFrames curve = curve_from_truth(t, rng, 30, 7, coeffs);
     FitOptions o;
     o.basis = t.basis;
     o.fixed_case = t.basis_case;
@@ -117,10 +123,7 @@ TEST(FitCore, SearchFindsTheGeneratingCaseAndParameters) {
   const Truth cases[] = {{Basis::Pde8, 2, 3.25, 5.5}, {Basis::Pde8, 1, 1.5, 9.0}, {Basis::Pde32, 0, 2.5, 6.0}};
   for (const Truth& t : cases) {
     std::vector<double> coeffs[3];
-    for (auto& c : coeffs) c = random_coeffs(rng, basis_term_count(t.basis));
-    CurveFrames curve = make_curve(40, 9, [&](int a, double tau, double u) {
-      return motion_value(t.basis, t.basis_case, t.time_param, t.space_param, coeffs[a], tau, u);
-    });
+    CurveFrames curve = curve_from_truth(t, rng, 40, 9, coeffs);
     FitOptions o;
     o.basis = t.basis;
     o.refined_cases = 4;
@@ -298,6 +301,55 @@ TEST(FitCore, ResultsDoNotDependOnThreadCount) {
       EXPECT_EQ(one[i].axis[a].motion.time_param, three[i].axis[a].motion.time_param);
       EXPECT_EQ(one[i].axis[a].motion.basis_case, three[i].axis[a].motion.basis_case);
     }
+}
+
+TEST(FitCore, TinyCurvesAndSingleFramesAreFittedExactly) {
+  // Fewer points or frames than functions: the minimum-norm solution interpolates.
+  for (size_t points : {1, 2, 3})
+    for (size_t frames : {1, 2})
+      for (Basis b : {Basis::Pde8, Basis::Pde32}) {
+        CurveFrames c = make_curve(std::max<size_t>(points, 2), frames, [](int a, double tau, double u) {
+          return std::sin(3 * u + a) + tau;
+        });
+        if (points == 1) {  // one point at u = 0.4
+          c.u = {0.4};
+          std::vector<double> xyz;
+          for (size_t f = 0; f < frames; ++f) xyz.insert(xyz.end(), c.xyz.begin() + long(f * 6), c.xyz.begin() + long(f * 6 + 3));
+          c.xyz = xyz;
+        }
+        FitOptions o;
+        o.basis = b;
+        CurveFit fit;
+        std::string error;
+        ASSERT_TRUE(fit_curve(c, o, &fit, &error)) << error;
+        EXPECT_LT(fit.max_error, 1e-5) << points << " points, " << frames << " frames, basis " << int(b);
+      }
+}
+
+TEST(FitCore, StoredFitNeverLosesToThePolynomialLimitInFloat) {
+  // Eight points and eight space functions: the search can reach a near-zero double residual
+  // at large r whose coefficients do not survive float storage (seen on chicken-crossing).
+  // The stored error must never exceed that of the float polynomial limit.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> d(-1, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    double k[3][4];
+    for (auto& row : k)
+      for (double& v : row) v = d(rng);
+    CurveFrames c = make_curve(8, 6, [&](int a, double tau, double u) {
+      return 10 + k[a][0] * std::sin(7 * u + k[a][1]) + 0.3 * k[a][2] * std::cos(11 * u * u + tau) + k[a][3] * tau;
+    });
+    FitOptions o;
+    o.basis = Basis::Pde32;
+    o.remove_rigid = trial % 2 == 1;
+    CurveFit searched, polynomial;
+    std::string error;
+    ASSERT_TRUE(fit_curve(c, o, &searched, &error)) << error;
+    o.fixed_time_param = 0;
+    o.fixed_space_param = 0;
+    ASSERT_TRUE(fit_curve(c, o, &polynomial, &error)) << error;
+    EXPECT_LE(searched.rms_error, polynomial.rms_error * (1 + 1e-6) + 1e-9) << "trial " << trial;
+  }
 }
 
 TEST(FitCore, RejectsBadInput) {

@@ -60,6 +60,30 @@ TEST(PaperProtocols, RigidlyTurningSheetIsPredictedByThePdeFitNotByLinearSplines
   EXPECT_NE(table.find("ratios"), std::string::npos);
 }
 
+TEST(PaperProtocols, AcceleratingTranslationIsFollowedByThe32TermFitNotByLinearInterpolation) {
+  // A straight row of length 2 (D = 2) translating as y = 3 t^2: linear interpolation between
+  // fitted frames misses the midpoint by 3 * 0.1^2 = 0.03, i.e. E = 0.015 on every predicted
+  // frame; the 32-term time set holds 1, s, s^2, s^3 and carries t^2 exactly. (With rigid
+  // removal the keyed centroid is interpolated linearly, like the splines: on corpus-ext that
+  // measured better than leaving translation to the fit, see rigid.h.)
+  Animation anim = make_sheet(2, 20, 11, [](double u, double v, double t, double* p) {
+    p[0] = 2 * u;
+    p[1] = 3 * t * t + 5 * v;
+    p[2] = 1;
+  });
+  Curves curves;
+  std::string error;
+  ASSERT_TRUE(grid_row_curves(anim, 20, &curves, &error)) << error;
+  nlohmann::json j;
+  ASSERT_TRUE(run_paper_protocol("paper2024", anim, curves, &j, nullptr, &error)) << error;
+  EXPECT_NEAR(j["bspline"]["mean_EA_predicted"].get<double>(), 0.015, 1e-5);
+  EXPECT_NEAR(j["bspline"]["max_EM"].get<double>(), 0.015, 1e-5);
+  EXPECT_NEAR(j["bspline"]["mean_EA"].get<double>(), 0.015 * 5 / 11, 1e-5);
+  ASSERT_EQ(j["pde_variants"][0]["basis"], "pde32");
+  ASSERT_EQ(j["pde_variants"][0]["rigid_removal"], false);
+  EXPECT_LT(j["pde_variants"][0]["max_EM"].get<double>(), 1e-5);
+}
+
 TEST(PaperProtocols, Paper2022PdeNeverLosesToTheCubicItContains) {
   Animation anim = make_sheet(5, 40, 3, [](double u, double v, double t, double* p) {
     p[0] = u + 2;
@@ -110,27 +134,49 @@ TEST(PaperProtocols, RefusesBadInput) {
   EXPECT_FALSE(grid_row_curves(anim, 7, &curves, &error));
 }
 
+// Every `stride`-th curve of `all`.
+Curves every_nth_curve(const Curves& all, uint32_t stride) {
+  Curves out;
+  for (uint32_t c = 0; c < all.curve_count(); c += stride) {
+    out.offsets.push_back(uint32_t(out.vertices.size()));
+    for (uint32_t k = all.offsets[c]; k < all.offsets[c + 1]; ++k) {
+      out.vertices.push_back(all.vertices[k]);
+      out.u.push_back(all.u[k]);
+    }
+    out.closed.push_back(all.closed[c]);
+  }
+  out.offsets.push_back(uint32_t(out.vertices.size()));
+  return out;
+}
+
 TEST(PaperProtocols, ClothSphereRows) {
+  // Ten of the 50 rows keep this quick under sanitizers; fit_bench prints all 50.
   const std::string dir = std::string(DCURVE_CORPUS_EXT) + "/cloth-sphere";
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "corpus-ext absent";
+#ifndef NDEBUG
+  GTEST_SKIP() << "unoptimized build: the synthetic protocol tests above cover the code";
+#endif
   Animation anim;
   std::string error;
   ASSERT_TRUE(read_frame_folder(dir, &anim, &error)) << error;
-  Curves curves;
-  ASSERT_TRUE(grid_row_curves(anim, 50, &curves, &error)) << error;
-  // Frames 0-10 are the free fall; frames 40-50 the draping over the sphere.
+  Curves rows;
+  ASSERT_TRUE(grid_row_curves(anim, 50, &rows, &error)) << error;
+  Curves curves = every_nth_curve(rows, 5);
+  // Frames 40-50 are the draping over the sphere.
   Animation drape = anim;
   drape.frames.assign(anim.frames.begin() + 40, anim.frames.begin() + 51);
-  for (const Animation* a : {&anim, &drape})
-    for (const char* protocol : {"paper2024", "paper2022"}) {
-      if (a == &drape && std::string(protocol) == "paper2022") continue;
-      nlohmann::json j;
-      std::string table;
-      ASSERT_TRUE(run_paper_protocol(protocol, *a, curves, &j, &table, &error)) << error;
-      std::cout << (a == &drape ? "[cloth-sphere frames 40-50 as 0-10]\n" : "[cloth-sphere]\n") << table;
-      EXPECT_GT(j["pde"]["mean_EA"].get<double>(), 0.0);
-      EXPECT_TRUE(std::isfinite(j["pde"]["max_EM"].get<double>()));
-    }
+  nlohmann::json j;
+  std::string table;
+  ASSERT_TRUE(run_paper_protocol("paper2024", drape, curves, &j, &table, &error)) << error;
+  std::cout << table;
+  EXPECT_EQ(j["curves"], 10);
+  // 50 control points on 50-point rows interpolate the fitted frames.
+  EXPECT_LT(j["per_frame"][0]["bspline_EM"].get<double>(), 1e-6);
+  EXPECT_GT(j["pde"]["mean_EA"].get<double>(), 0.0);
+  EXPECT_LT(j["pde"]["max_EM"].get<double>(), 0.2);
+  ASSERT_TRUE(run_paper_protocol("paper2022", anim, curves, &j, &table, &error)) << error;
+  std::cout << table;
+  EXPECT_LE(j["pde"]["mean_EA"].get<double>(), j["bezier"]["mean_EA"].get<double>() * (1 + 1e-6));
 }
 
 }  // namespace

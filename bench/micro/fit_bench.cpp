@@ -15,13 +15,14 @@
 #include "encoder/fit/curve_frames.h"
 #include "encoder/fit/fit.h"
 
+#include <cstdio>
 #include <cstdlib>
 
 namespace dcurve {
 namespace {
 
-// 50 rows of 50 points, at `frames` frames spread over frames 40..50 of cloth-sphere.
-std::vector<CurveFrames> load_curves(uint32_t frames) {
+// cloth-sphere (or the synthetic stand-in), loaded once.
+const Animation& cloth() {
   static Animation anim;
   static bool loaded = false;
   if (!loaded) {
@@ -44,9 +45,20 @@ std::vector<CurveFrames> load_curves(uint32_t frames) {
     }
     loaded = true;
   }
+  return anim;
+}
+
+Curves cloth_rows() {
   Curves curves;
   std::string error;
-  grid_row_curves(anim, 50, &curves, &error);
+  grid_row_curves(cloth(), 50, &curves, &error);
+  return curves;
+}
+
+// 50 rows of 50 points, at `frames` frames spread over frames 40..50 of cloth-sphere.
+std::vector<CurveFrames> load_curves(uint32_t frames) {
+  const Animation& anim = cloth();
+  Curves curves = cloth_rows();
   std::vector<uint32_t> ids;
   std::vector<double> tau;
   for (uint32_t k = 0; k < frames; ++k) {
@@ -123,6 +135,32 @@ void BM_PolynomialPair71(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_PolynomialPair71)->Unit(benchmark::kMillisecond);
+
+// The papers' protocols on all 50 cloth rows (2024: frames 40..50 as 0..10, the draping;
+// 2022: keyframes 20 and 100). Prints the tables once; the counters repeat the summaries.
+void BM_PaperProtocol(benchmark::State& state) {
+  const bool is2024 = state.range(0) == 2024;
+  Animation anim = cloth();
+  if (is2024) anim.frames.assign(cloth().frames.begin() + 40, cloth().frames.begin() + 51);
+  Curves curves = cloth_rows();
+  nlohmann::json j;
+  std::string table, error;
+  bool printed = false;
+  for (auto _ : state) {
+    if (!run_paper_protocol(is2024 ? "paper2024" : "paper2022", anim, curves, &j, &table, &error)) {
+      state.SkipWithError(error.c_str());
+      return;
+    }
+    if (!printed) std::printf("%s", table.c_str());
+    printed = true;
+  }
+  state.counters["pde_mean_EA"] = j["pde"]["mean_EA"].get<double>();
+  state.counters["pde_max_EM"] = j["pde"]["max_EM"].get<double>();
+  const char* other = is2024 ? "bspline" : "bezier";
+  state.counters[std::string(other) + "_mean_EA"] = j[other]["mean_EA"].get<double>();
+  state.counters[std::string(other) + "_max_EM"] = j[other]["max_EM"].get<double>();
+}
+BENCHMARK(BM_PaperProtocol)->Arg(2024)->Arg(2022)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace dcurve

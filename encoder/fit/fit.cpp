@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 #include "codec/basis.h"
@@ -50,11 +51,40 @@ void evaluate_on_grid(const CurveFit& fit, const CurveFrames& c, std::vector<dou
   for (size_t f = 0; f < F; ++f) evaluate_curve_fit(fit, c.u, c.rest, c.tau[f], out->data() + f * P * 3);
 }
 
+// Least squares at the choice's parameters rounded to float, as the file will hold them;
+// stored2 = squared residual of the float coefficients.
+AxisFit solve_axis(const Eigen::MatrixXd& w, const Eigen::VectorXd& u, const Eigen::VectorXd& tau, Basis basis,
+                   const ParamChoice& choice, double* stored2) {
+  AxisFit ax;
+  CurveMotion& m = ax.motion;
+  m.basis = basis;
+  m.basis_case = uint8_t(choice.basis_case);
+  m.time_param = float(choice.time_param);
+  m.space_param = float(choice.space_param);
+  Eigen::MatrixXd space_m = space_design(basis, m.basis_case, m.space_param, u);
+  Eigen::MatrixXd time_m = time_design(basis, m.basis_case, m.time_param, tau);
+  ScaledRange space, time;
+  space.compute(space_m, true);
+  time.compute(time_m, true);
+  Eigen::VectorXd coeffs = solve_coefficients(space, time, w);
+  ax.coeffs.assign(coeffs.data(), coeffs.data() + coeffs.size());
+  m.coeffs.resize(ax.coeffs.size());
+  for (size_t k = 0; k < ax.coeffs.size(); ++k) m.coeffs[k] = float(ax.coeffs[k]);
+  ax.residual_rms = std::sqrt(projection_residual(space, time, w).squaredNorm() / double(w.size()));
+  const Eigen::Index ns = space_m.cols(), nt = time_m.cols();
+  Eigen::MatrixXd stored(ns, nt);  // space x time, from the float coefficients
+  for (Eigen::Index i = 0; i < nt; ++i)
+    for (Eigen::Index j = 0; j < ns; ++j) stored(j, i) = double(m.coeffs[size_t(i * ns + j)]);
+  *stored2 = (w - space_m * stored * time_m.transpose()).squaredNorm();
+  return ax;
+}
+
 }  // namespace
 
 void evaluate_curve_fit(const CurveFit& fit, const std::vector<double>& u, const std::vector<double>& rest,
                         double tau, double* xyz) {
   const size_t P = u.size();
+  const bool add_rest = fit.mode == FitMode::Displacement && rest.size() == P * 3;
   for (int a = 0; a < 3; ++a) {
     const CurveMotion& m = fit.axis[a].motion;
     const int nt = basis_time_count(m.basis), ns = basis_space_count(m.basis);
@@ -70,7 +100,7 @@ void evaluate_curve_fit(const CurveFit& fit, const std::vector<double>& u, const
         basis_space(m.basis, m.basis_case, m.space_param, u[p], s);
         for (int j = 0; j < ns; ++j) w += row[j] * s[j];
       }
-      if (fit.mode == FitMode::Displacement) w += rest[p * 3 + size_t(a)];
+      if (add_rest) w += rest[p * 3 + size_t(a)];
       xyz[p * 3 + size_t(a)] = w;
     }
   }
@@ -102,23 +132,26 @@ bool fit_curve(const CurveFrames& c, const FitOptions& o, CurveFit* fit, std::st
       }
   }
 
-  std::array<ParamChoice, 3> choice = search_parameters(w, u, tau, o);
+  // The search ranks candidates by the double residual; the file holds floats, and an
+  // ill-conditioned candidate (say, as many points as space functions at a large parameter)
+  // can fit in double and fall apart in float. So each candidate, and the polynomial limit
+  // (parameters 0, or the fixed ones) as a safe fallback, is judged by its stored residual.
+  std::array<std::vector<ParamChoice>, 3> candidates = search_parameters(w, u, tau, o);
   for (int a = 0; a < 3; ++a) {
-    AxisFit& ax = fit->axis[a];
-    CurveMotion& m = ax.motion;
-    m.basis = o.basis;
-    m.basis_case = uint8_t(choice[size_t(a)].basis_case);
-    m.time_param = float(choice[size_t(a)].time_param);
-    m.space_param = float(choice[size_t(a)].space_param);
-    // Solve again at the parameters the file will hold.
-    ScaledRange space, time;
-    space.compute(space_design(o.basis, m.basis_case, m.space_param, u), true);
-    time.compute(time_design(o.basis, m.basis_case, m.time_param, tau), true);
-    Eigen::VectorXd coeffs = solve_coefficients(space, time, w[size_t(a)]);
-    ax.coeffs.assign(coeffs.data(), coeffs.data() + coeffs.size());
-    m.coeffs.resize(ax.coeffs.size());
-    for (size_t k = 0; k < ax.coeffs.size(); ++k) m.coeffs[k] = float(ax.coeffs[k]);
-    ax.residual_rms = std::sqrt(projection_residual(space, time, w[size_t(a)]).squaredNorm() / double(P * F));
+    std::vector<ParamChoice>& list = candidates[size_t(a)];
+    ParamChoice fallback = list.front();
+    fallback.time_param = std::max(0.0, o.fixed_time_param);
+    fallback.space_param = std::max(0.0, o.fixed_space_param);
+    list.push_back(fallback);
+    double best = std::numeric_limits<double>::infinity();
+    for (const ParamChoice& pc : list) {
+      double stored2 = 0;
+      AxisFit candidate = solve_axis(w[size_t(a)], u, tau, o.basis, pc, &stored2);
+      if (stored2 < best) {
+        best = stored2;
+        fit->axis[a] = candidate;
+      }
+    }
   }
 
   std::vector<double> fitted;

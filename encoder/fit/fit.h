@@ -65,7 +65,8 @@ bool fit_curve(const CurveFrames& curve, const FitOptions& options, CurveFit* fi
 
 // Positions of the fitted curve at segment time tau for the points u (world coordinates:
 // rest pose and rigid motion restored), written to xyz (u.size() * 3), model units.
-// `rest` is required (points * 3) in Displacement mode, ignored otherwise.
+// `rest` (points * 3) is added in Displacement mode; a rest of any other size is ignored
+// (the displacement alone is returned), never read out of bounds.
 void evaluate_curve_fit(const CurveFit& fit, const std::vector<double>& u, const std::vector<double>& rest,
                         double tau, double* xyz);
 

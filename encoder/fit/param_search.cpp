@@ -134,7 +134,7 @@ double projected_residual2(const Eigen::MatrixXd& w, const Eigen::VectorXd& u, c
   return model.residual(time_param, space_param).squaredNorm();
 }
 
-std::array<ParamChoice, 3> search_parameters(const std::array<Eigen::MatrixXd, 3>& w, const Eigen::VectorXd& u,
+std::array<std::vector<ParamChoice>, 3> search_parameters(const std::array<Eigen::MatrixXd, 3>& w, const Eigen::VectorXd& u,
                                              const Eigen::VectorXd& tau, const FitOptions& o) {
   const Basis b = o.basis;
   const std::vector<int> cases = allowed_cases(o);
@@ -179,20 +179,17 @@ std::array<ParamChoice, 3> search_parameters(const std::array<Eigen::MatrixXd, 3
     }
   }
 
-  std::array<ParamChoice, 3> chosen;
+  std::array<std::vector<ParamChoice>, 3> chosen;
   for (int a = 0; a < 3; ++a) {
     std::vector<ParamChoice> ranked;
     for (int c : cases) ranked.push_back(best[size_t(c)][size_t(a)]);
     std::stable_sort(ranked.begin(), ranked.end(),
                      [](const ParamChoice& x, const ParamChoice& y) { return x.residual2 < y.residual2; });
-    ParamChoice winner;
-    winner.residual2 = std::numeric_limits<double>::infinity();
+    std::vector<ParamChoice>& out = chosen[size_t(a)];
     size_t n = std::min(ranked.size(), size_t(std::max(1, o.refined_cases)));
-    for (size_t k = 0; k < n; ++k) {
-      ParamChoice pc = refine(w[size_t(a)], u, tau, o, ranked[k]);
-      if (pc.residual2 < winner.residual2) winner = pc;
-    }
-    chosen[size_t(a)] = winner;
+    for (size_t k = 0; k < n; ++k) out.push_back(refine(w[size_t(a)], u, tau, o, ranked[k]));
+    std::stable_sort(out.begin(), out.end(),
+                     [](const ParamChoice& x, const ParamChoice& y) { return x.residual2 < y.residual2; });
   }
   return chosen;
 }

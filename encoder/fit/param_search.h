@@ -3,6 +3,7 @@
 #pragma once
 #include <Eigen/Dense>
 #include <array>
+#include <vector>
 
 #include "encoder/fit/fit.h"
 
@@ -15,10 +16,11 @@ struct ParamChoice {
   double residual2 = 0;  // squared residual norm at the choice, model units^2
 };
 
-// One choice per axis for the three points x frames matrices w[a]. Coarse grid over every
-// allowed case (the three axes share the basis evaluations), then Levenberg-Marquardt on
-// the free parameters of the options.refined_cases best cases of each axis. Deterministic.
-std::array<ParamChoice, 3> search_parameters(const std::array<Eigen::MatrixXd, 3>& w, const Eigen::VectorXd& u,
+// Candidate choices per axis for the three points x frames matrices w[a], best first. Coarse
+// grid over every allowed case (the three axes share the basis evaluations), then
+// Levenberg-Marquardt on the free parameters of the options.refined_cases best cases of each
+// axis (one refined candidate per case). Deterministic.
+std::array<std::vector<ParamChoice>, 3> search_parameters(const std::array<Eigen::MatrixXd, 3>& w, const Eigen::VectorXd& u,
                                              const Eigen::VectorXd& tau, const FitOptions& options);
 
 // Squared projected residual of one axis at one choice (the quantity searched).

@@ -1,5 +1,8 @@
 #include "encoder/fit/projection.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "codec/basis.h"
 
 namespace dcurve {
@@ -11,6 +14,17 @@ void ScaledRange::compute(const Eigen::MatrixXd& a, bool want_pinv) {
     scale(j) = n > 0 ? 1.0 / n : 1.0;
   }
   Eigen::MatrixXd scaled = a * scale.asDiagonal();
+  if (!want_pinv) {
+    // The search needs only the range: a pivoted QR gives it at a fraction of the SVD's cost;
+    // the diagonal of R, relative to its first entry, decides the rank as the singular values do.
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
+    const Eigen::Index k = std::min(scaled.rows(), scaled.cols());
+    Eigen::Index rank = 0;
+    const double r0 = k > 0 ? std::abs(qr.matrixR()(0, 0)) : 0.0;
+    while (rank < k && std::abs(qr.matrixR()(rank, rank)) > r0 * 1e-11) ++rank;
+    q = qr.householderQ() * Eigen::MatrixXd::Identity(scaled.rows(), rank);
+    return;
+  }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
   Eigen::Index rank = 0;
@@ -23,24 +37,26 @@ void ScaledRange::compute(const Eigen::MatrixXd& a, bool want_pinv) {
   }
 }
 
-Eigen::MatrixXd space_design(Basis b, int basis_case, double space_param, const Eigen::VectorXd& u) {
-  Eigen::MatrixXd m(u.size(), basis_space_count(b));
+namespace {
+// basis_space and basis_time share one signature: sample either on the points x.
+using BasisFn = void (*)(Basis, int, double, double, double*);
+Eigen::MatrixXd sample_design(BasisFn fn, int count, Basis b, int basis_case, double param, const Eigen::VectorXd& x) {
+  Eigen::MatrixXd m(x.size(), count);
   double out[8];
-  for (Eigen::Index p = 0; p < u.size(); ++p) {
-    basis_space(b, basis_case, space_param, u(p), out);
-    for (Eigen::Index j = 0; j < m.cols(); ++j) m(p, j) = out[j];
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    fn(b, basis_case, param, x(k), out);
+    for (Eigen::Index j = 0; j < count; ++j) m(k, j) = out[j];
   }
   return m;
 }
+}  // namespace
+
+Eigen::MatrixXd space_design(Basis b, int basis_case, double space_param, const Eigen::VectorXd& u) {
+  return sample_design(basis_space, basis_space_count(b), b, basis_case, space_param, u);
+}
 
 Eigen::MatrixXd time_design(Basis b, int basis_case, double time_param, const Eigen::VectorXd& tau) {
-  Eigen::MatrixXd m(tau.size(), basis_time_count(b));
-  double out[4];
-  for (Eigen::Index f = 0; f < tau.size(); ++f) {
-    basis_time(b, basis_case, time_param, tau(f), out);
-    for (Eigen::Index i = 0; i < m.cols(); ++i) m(f, i) = out[i];
-  }
-  return m;
+  return sample_design(basis_time, basis_time_count(b), b, basis_case, time_param, tau);
 }
 
 Eigen::VectorXd projection_residual(const ScaledRange& space, const ScaledRange& time, const Eigen::MatrixXd& w) {

@@ -10,9 +10,11 @@
 
 namespace dcurve {
 
-// Range basis and pseudo-inverse of a tall matrix (rows >= 1, columns <= 8), after scaling
-// every column to unit norm. Singular values below 1e-11 of the largest count as zero, so
-// rank-deficient designs (fewer frames than time functions) get the minimum-norm solution.
+// Range basis and pseudo-inverse of a matrix (rows >= 1, columns <= 8), after scaling every
+// column to unit norm. With the pseudo-inverse: SVD, singular values below 1e-11 of the
+// largest count as zero, so rank-deficient designs (fewer frames than time functions) get the
+// minimum-norm solution. Range only (the parameter search): pivoted QR, same 1e-11 rank rule
+// on the diagonal of R.
 struct ScaledRange {
   Eigen::MatrixXd q;      // rows x rank, orthonormal columns spanning the matrix's range
   Eigen::MatrixXd pinv;   // columns x rows: pseudo-inverse of the unscaled matrix

@@ -7,6 +7,9 @@
 // linearly interpolated; before the first / after the last key the end key holds.
 //   world = R(tau) * (local - ref_centroid) + centroid(tau)
 // so the reference frame's key is the identity and local == world there.
+// Keying the translation (exact at the fitted frames, linear between them) measured better on
+// corpus-ext's paper2024 runs than leaving it in the fitted data (horse-gallop mean E_An 0.069
+// against 0.219): four time functions follow fast curve motion worse than the keys.
 #pragma once
 #include <cstddef>
 #include <vector>
