@@ -8,12 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
-#include <sys/wait.h>
 
 #include "bench/baselines.h"
 #include "bench/draco_per_frame.h"
@@ -21,6 +18,7 @@
 #include "bench/report.h"
 #include "bench/runner.h"
 #include "encoder/metrics.h"
+#include "test_util.h"
 
 namespace dcurve::bench {
 namespace {
@@ -252,13 +250,11 @@ TEST(BenchPlot, OnePanelPerInputAndOneMarkerPerResult) {
   EXPECT_EQ(count("stroke-width='1.5' fill='white'"), 1u);  // the one result that missed its tolerance
 }
 
+// Output through a pipe, not a shared file: ctest runs these tests in parallel.
 std::string run_cli(const std::string& args, int* status) {
-  const std::string out = testing::TempDir() + "/bench_cli_out.txt";
-  *status = std::system((std::string(DCURVE_CLI) + " bench " + args + " > " + out + " 2>&1").c_str());
-  std::ifstream in(out);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  dcurve::test::CommandResult r = dcurve::test::run_cli("bench " + args);
+  *status = r.exit_code;
+  return r.output;
 }
 
 TEST(BenchCli, JsonCsvAndPlotFromFrameFolder) {
@@ -293,15 +289,15 @@ TEST(BenchCli, JsonCsvAndPlotFromFrameFolder) {
 TEST(BenchCli, BadInputsFailClearly) {
   int status = 0;
   std::string out = run_cli("/nonexistent/folder", &status);
-  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_EQ(status, 1);
   EXPECT_NE(out.find("/nonexistent/folder"), std::string::npos) << out;
   out = run_cli("--methods zip " + testing::TempDir(), &status);
-  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
+  EXPECT_EQ(status, 2) << out;
   out = run_cli("--protocol paper2024 " + testing::TempDir(), &status);
-  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_EQ(status, 1);
   EXPECT_NE(out.find("no .obj, .ply or .off frames"), std::string::npos) << out;
   out = run_cli("--protocol paper2024", &status);
-  EXPECT_EQ(WEXITSTATUS(status), 2) << out;
+  EXPECT_EQ(status, 2) << out;
 }
 
 }  // namespace
