@@ -5,6 +5,8 @@
 
 #include "cli/commands.h"
 #include "codec/container.h"
+#include "codec/residual.h"
+#include "decoder/model_prediction.h"
 #include "encoder/io/files.h"
 
 namespace dcurve::cli {
@@ -28,6 +30,34 @@ struct BasisUse {
 };
 
 // Everything `dcurve info` reports, as one JSON object; the text output prints from it.
+
+// How often each residual predictor and spatial correction serves a (frame, axis): which
+// predictors the encoder's rate control chose.
+nlohmann::json predictor_use(const Model& m) {
+  if (!(m.residual.step > 0)) return nullptr;
+  std::vector<int32_t> prediction;
+  ResidualOptions options;
+  std::string err;
+  if (has_motion_model(m)) {
+    if (!model_grid_prediction(m, UINT64_MAX, &prediction, &err)) return nullptr;
+    options.model_prediction = &prediction;
+  }
+  PredictorPlan plan;
+  if (!decode_predictor_plan(m, &plan, &err, options)) return nullptr;
+  static const char* kinds[] = {"none", "reference", "linear", "model"};
+  static const char* spatial[] = {"off", "mean", "parallelogram", "blend"};
+  nlohmann::json k = nlohmann::json::object(), sp = nlohmann::json::object();
+  for (const PredictorChoice& c : plan.choices) {
+    const std::string kn = size_t(c.kind) < 4 ? kinds[size_t(c.kind)] : "other";
+    const std::string sn = size_t(c.spatial) < 4 ? spatial[size_t(c.spatial)] : "other";
+    k[kn] = k.value(kn, 0) + 1;
+    sp[sn] = sp.value(sn, 0) + 1;
+  }
+  bool time_order = true;
+  for (size_t i = 0; i < plan.order.size(); ++i) time_order = time_order && plan.order[i] == i;
+  return {{"kind", k}, {"spatial", sp}, {"coding_order", time_order ? "time" : "hierarchical"}};
+}
+
 nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& bytes, const Model& m,
                         const std::vector<SectionInfo>& sections) {
   ContainerHeader h;
@@ -64,6 +94,7 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
                     {"basis_use", use.json()}});
   }
   const bool has_residual = m.residual.step > 0;
+  nlohmann::json predictors = predictor_use(m);
   return {{"file", path},
           {"bytes", bytes.size()},
           {"version", std::to_string(h.version_major) + "." + std::to_string(h.version_minor)},
@@ -93,7 +124,8 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
            {{"present", has_residual},
             {"grid_step", m.residual.step},
             {"origin", {m.residual.origin[0], m.residual.origin[1], m.residual.origin[2]}},
-            {"payload_bytes", m.residual.payload.size()}}},
+            {"payload_bytes", m.residual.payload.size()},
+            {"predictors", predictors}}},
           {"sections", js}};
 }
 
@@ -129,8 +161,14 @@ void print_text(const nlohmann::json& j) {
                 (unsigned long long)s["basis_use"]["pde32"].get<uint64_t>());
   const auto& r = j["residual"];
   if (r["present"].get<bool>())
+  {
     std::printf("  residual layer: grid step %.6g, %llu payload bytes\n", r["grid_step"].get<double>(),
                 (unsigned long long)r["payload_bytes"].get<uint64_t>());
+    if (!r["predictors"].is_null())
+      std::printf("  predictors per frame and axis: %s; spatial corrections: %s; %s coding order\n",
+                  r["predictors"]["kind"].dump().c_str(), r["predictors"]["spatial"].dump().c_str(),
+                  r["predictors"]["coding_order"].get<std::string>().c_str());
+  }
   else
     std::printf("  no residual layer: positions come from the motion model alone\n");
   std::printf("  sections:\n");

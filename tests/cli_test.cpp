@@ -2,6 +2,8 @@
 // file on bad input, and no partial output file after a failure.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <fstream>
 
 #include "test_util.h"
@@ -69,6 +71,11 @@ TEST(Cli, EncodeDecodeInfoEndToEnd) {
   CommandResult i = run_cli("info " + dir / "c.dcrv --json");
   ASSERT_EQ(i.exit_code, 0) << i.output;
   EXPECT_NE(i.output.find("\"vertices\":2500"), std::string::npos) << i.output;
+  // The rate control's predictor choices are reported, one per frame and axis.
+  const nlohmann::json info = nlohmann::json::parse(i.output);
+  int choices = 0;
+  for (const auto& [kind, count] : info["residual"]["predictors"]["kind"].items()) choices += count.get<int>();
+  EXPECT_EQ(choices, 6 * 3) << i.output;
   ASSERT_EQ(run_cli("decode " + dir / "c.dcrv -o " + dir / "out").exit_code, 0);
   Animation back;
   ASSERT_TRUE(read_frame_folder(dir / "out", &back, &err)) << err;
