@@ -14,7 +14,7 @@ Action add_encode(CLI::App& app) {
   struct Opts {
     std::string input, output;
     double tolerance = 1e-3;
-    bool json = false, no_connectivity = false;
+    bool json = false, no_connectivity = false, exact_faces = false;
     int threads = 0;
     std::string model = "none";
     uint32_t segment_frames = 8, curve_points = 64;
@@ -37,6 +37,9 @@ Action add_encode(CLI::App& app) {
   app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")
       ->check(CLI::Range(2, 1000000))
       ->capture_default_str();
+  app.add_flag("--exact-face-order", o->exact_faces,
+               "Store triangles in the input's order and corner rotation (default: the face coder's "
+               "traversal order, same triangles and vertex ids, smaller)");
   app.add_flag("--no-connectivity", o->no_connectivity, "Leave faces out of the file (the engine has the mesh)");
   app.add_option("--threads", o->threads, "Worker threads, 0 = all cores (output is the same for any count)")
       ->check(CLI::NonNegativeNumber);
@@ -51,6 +54,7 @@ Action add_encode(CLI::App& app) {
     EncodeOptions eo;
     eo.tolerance = o->tolerance;
     eo.connectivity = !o->no_connectivity;
+    eo.exact_face_order = o->exact_faces;
     eo.threads = o->threads;
     eo.model = o->model == "pde8" ? ModelChoice::Pde8 : o->model == "pde32" ? ModelChoice::Pde32 : ModelChoice::None;
     eo.segment_frames = o->segment_frames;

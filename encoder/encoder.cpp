@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "codec/container.h"
+#include "codec/faces.h"
 #include "codec/model.h"
 #include "codec/residual.h"
 #include "decoder/dcurve.hpp"
@@ -68,7 +69,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   m.meta = {V, F, anim.frame_rate, opt.tolerance, L, ""};
   // The residual layer predicts from mesh neighbours when the file stores faces, and from
   // curve neighbours otherwise: it must see exactly what the decoder will.
-  if (opt.connectivity) m.faces = anim.faces;
+  if (opt.connectivity) m.faces = opt.exact_face_order ? anim.faces : traversal_order(anim.faces);
 
   CurveOptions co;
   co.target_points = opt.curve_points;
