@@ -1,0 +1,80 @@
+// Encode time and file size against tolerance, beside the simplest baseline measured in the
+// same run (quantized temporal delta, bench/baselines.h). Inputs: the built-in rope-small
+// scene (simulated once) and, when found, horse-gallop from the external corpus
+// (DCURVE_CORPUS_EXT or ../shared/corpus-ext).
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "bench/runner.h"
+#include "encoder/encoder.h"
+#include "encoder/sim/scene.h"
+
+namespace {
+using namespace dcurve;
+
+const Animation* input(const std::string& name) {
+  static std::map<std::string, Animation> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second.frames.empty() ? nullptr : &it->second;
+  Animation& a = cache[name];
+  std::string err;
+  if (name == "rope-small") {
+    Scene scene;
+    if (!builtin_scene(name, &scene, &err) || !simulate_scene(scene, &a, {}, &err)) a = {};
+  } else {
+    const char* env = std::getenv("DCURVE_CORPUS_EXT");
+    const std::string dir = std::string(env ? env : "../shared/corpus-ext") + "/" + name;
+    if (!std::filesystem::is_directory(dir) || !read_frame_folder(dir, &a, &err)) a = {};
+  }
+  return a.frames.empty() ? nullptr : &a;
+}
+
+void BM_Encode(benchmark::State& state, const std::string& name, double tolerance) {
+  const Animation* anim = input(name);
+  if (!anim) {
+    state.SkipWithError(("input not found: " + name).c_str());
+    return;
+  }
+  EncodeOptions opt;
+  opt.tolerance = tolerance;
+  EncodeReport rep;
+  for (auto _ : state) {
+    std::vector<uint8_t> bytes;
+    std::string err;
+    if (!encode_animation(*anim, opt, &bytes, &rep, &err)) {
+      state.SkipWithError(err.c_str());
+      return;
+    }
+  }
+  const bench::InputResult base = bench::run_bench(name, *anim, tolerance, {"quantized_delta"}, {});
+  const double vf = double(anim->vertex_count) * double(anim->frames.size());
+  state.counters["bytes"] = double(rep.bytes);
+  state.counters["bpvf"] = rep.bpvf;
+  state.counters["max_error"] = rep.error.max_error;
+  state.counters["vs_quantized_delta"] = double(rep.bytes) / double(base.methods.at(0).bytes);
+  state.counters["vertex_frames_per_s"] = benchmark::Counter(vf, benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void register_all() {
+  for (const char* name : {"rope-small", "horse-gallop"})
+    for (double tol : {1e-2, 1e-3, 1e-4})
+      benchmark::RegisterBenchmark(("encode/" + std::string(name) + "/tol=" + std::to_string(tol)).c_str(),
+                                   [name, tol](benchmark::State& s) { BM_Encode(s, name, tol); })
+          ->Unit(benchmark::kSecond)
+          ->Iterations(1)
+          ->UseRealTime();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
