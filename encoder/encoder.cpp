@@ -2,6 +2,7 @@
 
 #include <zstd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -48,6 +49,15 @@ std::vector<uint32_t> smaller_face_order(const std::vector<uint32_t>& faces) {
   };
   std::vector<uint32_t> trav = traversal_order(faces);
   return coded(encode_faces(trav, FaceOrder::Traversal)) < coded(encode_faces(faces, FaceOrder::Exact)) ? trav : faces;
+}
+
+// How far the residual layer may move a grid value from the input: the tolerance, less what
+// the decoder's float32 output can add (a few roundings of the largest coordinate).
+double snap_distance(const Animation& anim, double max_distance) {
+  double largest = 0;
+  for (const auto& frame : anim.frames)
+    for (float x : frame) largest = std::max(largest, double(std::fabs(x)));
+  return max_distance - 4.0 * std::sqrt(3.0) * largest * std::ldexp(1.0, -24);
 }
 
 // Decodes `bytes` with the runtime decoder at every input frame time and measures it: the
@@ -114,7 +124,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     if (!model_grid_prediction(m, UINT64_MAX, &prediction, error)) return false;
     ro.model_prediction = &prediction;
   }
-  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, opt.tolerance * L, &q, ro);
+  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, snap_distance(anim, opt.tolerance * L), &q, ro);
   m.residual.payload = encode_residuals(m, q, &plan, ro);
   if (m.residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
   progress(0.9);
