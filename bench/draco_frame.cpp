@@ -7,6 +7,8 @@
 #include <cmath>
 #include <memory>
 
+#include "codec/error.h"
+
 namespace dcurve::bench {
 namespace {
 
@@ -15,11 +17,6 @@ namespace {
 constexpr int kCalibrationBits = 20;
 constexpr uint32_t kIndexRadix = 1024;
 constexpr uint32_t kMaxVertices = kIndexRadix * kIndexRadix;
-
-bool fail(std::string* error, const std::string& msg) {
-  if (error) *error = msg;
-  return false;
-}
 
 // A Draco mesh with one point per input vertex (identity mapping, no deduplication, so the
 // encoder sees exactly our vertices).

@@ -26,7 +26,7 @@ bool bench_dcurve(const BenchContext& ctx, MethodResult* r, std::string* error) 
   if (!decode_all()) return false;
   set_measures(ctx, decoded, file.size(), rep.connectivity_bytes, r);
   r->decode_vertices_per_second = decode_rate(ctx, decode_all);
-  r->settings = "curves=" + std::to_string(rep.curves) + " segments=" + std::to_string(rep.segments) +
+  r->settings = "curves=" + std::to_string(rep.curves.curves) + " segments=" + std::to_string(rep.segments) +
                 " own connectivity section";
   return true;
 }

@@ -4,6 +4,7 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "encoder/curves/report_json.h"
 #include "encoder/encoder.h"
 #include "encoder/input.h"
 #include "encoder/io/files.h"
@@ -78,12 +79,7 @@ Action add_encode(CLI::App& app) {
                         {"connectivity_bytes", rep.connectivity_bytes},
                         {"vertices", rep.vertices},
                         {"frames", rep.frames},
-                        {"curves", rep.curves},
                         {"segments", rep.segments},
-                        {"mean_points_per_curve", rep.mean_points_per_curve},
-                        {"median_points_per_curve", rep.median_points_per_curve},
-                        {"short_curve_vertex_fraction", rep.short_curve_vertex_fraction},
-                        {"mean_turning_angle_deg", rep.mean_turning_angle_deg},
                         {"max_error", rep.error.max_error},
                         {"rmse", rep.error.rmse},
                         {"kg_error_pct", rep.error.kg_error_pct},
@@ -92,6 +88,7 @@ Action add_encode(CLI::App& app) {
                         {"model", o->model},
                         {"model_bytes", rep.model_bytes},
                         {"curve_fallback", rep.curve_fallback}};
+    j.update(curve_report_json(rep.curves));
     if (o->json) {
       std::printf("%s\n", j.dump().c_str());
     } else {

@@ -63,15 +63,12 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
   ContainerHeader h;
   peek_header(bytes.data(), bytes.size(), &h);
   nlohmann::json js = nlohmann::json::array();
-  uint64_t connectivity = 0;
+  const uint64_t connectivity = connectivity_bytes(sections);
   int face_layout = -1;
   for (const auto& s : sections) {
     js.push_back({{"tag", s.tag}, {"offset", s.offset}, {"required", s.required}, {"compressed", s.compressed},
                   {"stored_bytes", s.stored_bytes}, {"raw_bytes", s.raw_bytes}});
-    if (s.tag == "FACE") {
-      connectivity += s.stored_bytes + kSectionHeaderBytes;
-      face_layout = s.face_layout;
-    }
+    if (s.tag == "FACE") face_layout = s.face_layout;
   }
   std::vector<uint32_t> lengths;
   uint64_t closed = 0;

@@ -9,6 +9,7 @@
 #include "codec/basis.h"
 #include "codec/bytes.h"
 #include "codec/crc32.h"
+#include "codec/error.h"
 #include "codec/faces.h"
 #include "codec/validate.h"
 
@@ -105,7 +106,6 @@ std::vector<uint8_t> meta_bytes(const Model& m) {
   return std::move(w.data());
 }
 
-
 uint16_t u_to_fixed(float u) { return uint16_t(std::lround(std::clamp(u, 0.f, 1.f) * 65535.f)); }
 float u_from_fixed(uint16_t q) { return float(q) / 65535.f; }
 
@@ -150,11 +150,6 @@ std::vector<uint8_t> residual_bytes(const Model& m) {
   w.varint(m.residual.payload.size());
   w.bytes(m.residual.payload.data(), m.residual.payload.size());
   return std::move(w.data());
-}
-
-bool fail(std::string* error, const std::string& msg) {
-  if (error) *error = msg;
-  return false;
 }
 
 bool parse_meta(ByteReader& r, Model* m) {
@@ -267,6 +262,13 @@ bool peek_header(const uint8_t* data, size_t size, ContainerHeader* h) {
 }
 
 float quantize_curve_u(float u) { return u_from_fixed(u_to_fixed(u)); }
+
+uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections) {
+  uint64_t bytes = 0;
+  for (const SectionInfo& s : sections)
+    if (s.tag == "FACE") bytes += s.stored_bytes + kSectionHeaderBytes;
+  return bytes;
+}
 
 bool read_container(const uint8_t* data, size_t size, Model* model, std::string* error,
                     std::vector<SectionInfo>* infos) {

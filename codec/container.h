@@ -49,6 +49,10 @@ constexpr size_t kSectionHeaderBytes = 28;
 
 // Reads the header fields without checking anything else; false when size < 20 or the
 // magic is wrong. For tools that describe a file that read_container already accepted.
+// Bytes the FACE section takes in the file, its section header included (0 without one):
+// what dropping connectivity would save.
+uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections);
+
 bool peek_header(const uint8_t* data, size_t size, ContainerHeader* header);
 
 // Serializes `model` (which must pass validate_model). The RESI section is written only when

@@ -4,6 +4,7 @@
 
 #include "codec/bytes.h"
 #include "codec/crc32.h"
+#include "codec/error.h"
 #include "codec/int_coder.h"
 #include "codec/range_coder.h"
 
@@ -114,11 +115,6 @@ uint32_t values_checksum(const std::vector<int32_t>& q) {
     crc = crc32c(chunk, n, crc);
   }
   return crc;
-}
-
-bool fail(std::string* error, const std::string& msg) {
-  if (error) *error = msg;
-  return false;
 }
 
 }  // namespace

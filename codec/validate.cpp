@@ -1,6 +1,7 @@
 #include "codec/validate.h"
 
 #include "codec/basis.h"
+#include "codec/error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +9,6 @@
 
 namespace dcurve {
 namespace {
-bool fail(std::string* error, const std::string& msg) {
-  if (error) *error = msg;
-  return false;
-}
 bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
 }  // namespace
 

@@ -5,13 +5,10 @@
 #include <limits>
 
 #include "codec/basis.h"
+#include "codec/error.h"
 
 namespace dcurve {
 namespace {
-bool fail(std::string* error, const std::string& msg) {
-  if (error) *error = msg;
-  return false;
-}
 // double -> float, saturating to +-inf instead of the undefined conversion of an
 // out-of-range value (the finiteness checks after building then reject the file).
 float to_float(double v) {

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "codec/container.h"
+#include "codec/error.h"
 #include "codec/faces.h"
 #include "codec/model.h"
 #include "codec/residual.h"
@@ -20,11 +21,6 @@
 
 namespace dcurve {
 namespace {
-
-bool fail(std::string* error, const std::string& msg) {
-  if (error) *error = msg;
-  return false;
-}
 
 // Every vertex its own one-point curve: always a valid partition, used when extraction
 // cannot handle the mesh (non-manifold input); the residual layer then predicts from faces.
@@ -138,22 +134,16 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     return fail(error, "internal error: decoded max error " + std::to_string(rep.error.max_error) +
                            " exceeds the tolerance");
   rep.bytes = out->size();
-  if (!m.faces.empty()) {
-    // What the faces cost is whatever the file without them saves.
-    wo.connectivity = false;
-    rep.connectivity_bytes = rep.bytes - write_container(m, wo).size();
-  }
+  std::vector<SectionInfo> sections;
+  Model written;
+  if (!read_container(out->data(), out->size(), &written, error, &sections)) return false;
+  rep.connectivity_bytes = connectivity_bytes(sections);
   rep.motion_bytes = rep.bytes - rep.connectivity_bytes;
   rep.vertices = V;
   rep.frames = F;
   rep.segments = uint32_t(m.segments.size());
   rep.bpvf = 8.0 * double(rep.bytes) / (double(V) * F);
-  CurveReport cr = curve_report(m.curves, anim.frames[0]);
-  rep.curves = cr.curves;
-  rep.mean_points_per_curve = cr.mean_points_per_curve;
-  rep.median_points_per_curve = cr.median_points_per_curve;
-  rep.short_curve_vertex_fraction = cr.short_curve_vertex_fraction;
-  rep.mean_turning_angle_deg = cr.mean_turning_angle_deg;
+  rep.curves = curve_report(m.curves, anim.frames[0]);
   rep.encode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress(1.0);
   if (report) *report = rep;

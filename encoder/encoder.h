@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "encoder/curves/report.h"
 #include "encoder/io/frames.h"
 #include "encoder/metrics.h"
 
@@ -35,13 +36,11 @@ struct EncodeReport {
   uint64_t bytes = 0;
   uint64_t motion_bytes = 0;        // everything but the connectivity section
   uint64_t connectivity_bytes = 0;
-  uint32_t vertices = 0, frames = 0, curves = 0, segments = 0;
+  uint32_t vertices = 0, frames = 0, segments = 0;
   double bpvf = 0;                  // file bits / (vertices * frames)
   ErrorStats error;                 // measured by decoding the written bytes
   double encode_seconds = 0;
-  // Curve extraction report (issue 5 keys).
-  double mean_points_per_curve = 0, median_points_per_curve = 0;
-  double short_curve_vertex_fraction = 0, mean_turning_angle_deg = 0;
+  CurveReport curves{};             // the extracted curves (encoder/curves/report.h)
   std::string curve_fallback;       // why curve extraction fell back to one-vertex curves, or empty
   uint64_t model_bytes = 0;         // PDE model, before entropy coding (0 without a model)
 };

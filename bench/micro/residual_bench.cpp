@@ -27,7 +27,6 @@ struct Case {
   size_t delta_zstd = 0, plan_zstd = 0;
 };
 
-uint64_t zigzag(int64_t v) { return (uint64_t(v) << 1) ^ uint64_t(v >> 63); }
 
 size_t zstd_size(const std::vector<uint8_t>& raw) {
   std::vector<uint8_t> out(ZSTD_compressBound(raw.size()));
@@ -36,7 +35,7 @@ size_t zstd_size(const std::vector<uint8_t>& raw) {
 
 size_t varint_zstd(const std::vector<int64_t>& values) {
   ByteWriter w;
-  for (int64_t v : values) w.varint(zigzag(v));
+  for (int64_t v : values) w.varint(zigzag_encode(v));
   return zstd_size(w.data());
 }
 

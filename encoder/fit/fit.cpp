@@ -7,16 +7,12 @@
 #include <thread>
 
 #include "codec/basis.h"
+#include "codec/error.h"
 #include "encoder/fit/param_search.h"
 #include "encoder/fit/projection.h"
 
 namespace dcurve {
 namespace {
-
-bool fail(std::string* error, const std::string& message) {
-  if (error) *error = message;
-  return false;
-}
 
 bool check_input(const CurveFrames& c, const FitOptions& o, std::string* error) {
   const size_t P = c.points(), F = c.frames();

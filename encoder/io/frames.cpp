@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "codec/error.h"
+
 namespace dcurve {
 namespace fs = std::filesystem;
 namespace {
@@ -18,11 +20,6 @@ struct Traits : OpenMesh::DefaultTraits {
   typedef OpenMesh::Vec3f Point;
 };
 using Mesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
-
-bool fail(std::string* error, const std::string& msg) {
-  if (error) *error = msg;
-  return false;
-}
 
 std::string lower_ext(const fs::path& p) {
   std::string e = p.extension().string();
