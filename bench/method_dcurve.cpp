@@ -2,7 +2,9 @@
 // user ships: its own connectivity section included (reported apart).
 #include "bench/baselines.h"
 #include "decoder/dcurve.hpp"
+#include "codec/container.h"
 #include "encoder/encoder.h"
+#include "encoder/rate/plan_report.h"
 
 namespace dcurve::bench {
 
@@ -28,6 +30,12 @@ bool bench_dcurve(const BenchContext& ctx, MethodResult* r, std::string* error) 
   r->decode_vertices_per_second = decode_rate(ctx, decode_all);
   r->settings = "curves=" + std::to_string(rep.curves.curves) + " segments=" + std::to_string(rep.segments) +
                 " own connectivity section";
+  Model model;
+  std::string ignored;  // the decoder accepted the file above; a failure here only drops the note
+  if (read_container(file.data(), file.size(), &model, &ignored)) {
+    const std::string predictors = predictor_use_text(predictor_use(model));
+    if (!predictors.empty()) r->settings += "; predictors per frame and axis: " + predictors;
+  }
   return true;
 }
 

@@ -5,9 +5,8 @@
 
 #include "cli/commands.h"
 #include "codec/container.h"
-#include "codec/residual.h"
-#include "decoder/model_prediction.h"
 #include "encoder/io/files.h"
+#include "encoder/rate/plan_report.h"
 
 namespace dcurve::cli {
 namespace {
@@ -30,33 +29,6 @@ struct BasisUse {
 };
 
 // Everything `dcurve info` reports, as one JSON object; the text output prints from it.
-
-// How often each residual predictor and spatial correction serves a (frame, axis): which
-// predictors the encoder's rate control chose.
-nlohmann::json predictor_use(const Model& m) {
-  if (!(m.residual.step > 0)) return nullptr;
-  std::vector<int32_t> prediction;
-  ResidualOptions options;
-  std::string err;
-  if (has_motion_model(m)) {
-    if (!model_grid_prediction(m, UINT64_MAX, &prediction, &err)) return nullptr;
-    options.model_prediction = &prediction;
-  }
-  PredictorPlan plan;
-  if (!decode_predictor_plan(m, &plan, &err, options)) return nullptr;
-  static const char* kinds[] = {"none", "reference", "linear", "model"};
-  static const char* spatial[] = {"off", "mean", "parallelogram", "blend"};
-  nlohmann::json k = nlohmann::json::object(), sp = nlohmann::json::object();
-  for (const PredictorChoice& c : plan.choices) {
-    const std::string kn = size_t(c.kind) < 4 ? kinds[size_t(c.kind)] : "other";
-    const std::string sn = size_t(c.spatial) < 4 ? spatial[size_t(c.spatial)] : "other";
-    k[kn] = k.value(kn, 0) + 1;
-    sp[sn] = sp.value(sn, 0) + 1;
-  }
-  bool time_order = true;
-  for (size_t i = 0; i < plan.order.size(); ++i) time_order = time_order && plan.order[i] == i;
-  return {{"kind", k}, {"spatial", sp}, {"coding_order", time_order ? "time" : "hierarchical"}};
-}
 
 nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& bytes, const Model& m,
                         const std::vector<SectionInfo>& sections) {
