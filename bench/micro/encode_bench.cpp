@@ -1,13 +1,17 @@
 // Encode time and file size against tolerance, beside the simplest baseline measured in the
 // same run (quantized temporal delta, bench/baselines.h). Inputs: the built-in rope-small
 // scene (simulated once) and, when found, horse-gallop from the external corpus
-// (DCURVE_CORPUS_EXT or ../shared/corpus-ext).
+// (DCURVE_CORPUS_EXT or ../shared/corpus-ext). DCURVE_ENCODE_BENCH_INPUTS adds inputs, a
+// colon-separated list of built-in scene names or frame folders: the full-size rope
+// (issue #8's 15k-vertex, 100-frame case) is "rope", or a folder `dcurve simulate --scene
+// rope` wrote, which skips the minutes of simulation.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "bench/runner.h"
 #include "encoder/encoder.h"
@@ -22,9 +26,11 @@ const Animation* input(const std::string& name) {
   if (it != cache.end()) return it->second.frames.empty() ? nullptr : &it->second;
   Animation& a = cache[name];
   std::string err;
-  if (name == "rope-small") {
-    Scene scene;
-    if (!builtin_scene(name, &scene, &err) || !simulate_scene(scene, &a, {}, &err)) a = {};
+  Scene scene;
+  if (std::filesystem::is_directory(name)) {
+    if (!read_frame_folder(name, &a, &err)) a = {};
+  } else if (builtin_scene(name, &scene, &err)) {
+    if (!simulate_scene(scene, &a, {}, &err)) a = {};
   } else {
     const char* env = std::getenv("DCURVE_CORPUS_EXT");
     const std::string dir = std::string(env ? env : "../shared/corpus-ext") + "/" + name;
@@ -60,7 +66,16 @@ void BM_Encode(benchmark::State& state, const std::string& name, double toleranc
 }
 
 void register_all() {
-  for (const char* name : {"rope-small", "horse-gallop"})
+  std::vector<std::string> names{"rope-small", "horse-gallop"};
+  if (const char* extra = std::getenv("DCURVE_ENCODE_BENCH_INPUTS")) {
+    std::string list(extra);
+    for (size_t start = 0; start <= list.size();) {
+      const size_t end = std::min(list.find(':', start), list.size());
+      if (end > start) names.push_back(list.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  for (const std::string& name : names)
     for (double tol : {1e-2, 1e-3, 1e-4})
       benchmark::RegisterBenchmark(("encode/" + std::string(name) + "/tol=" + std::to_string(tol)).c_str(),
                                    [name, tol](benchmark::State& s) { BM_Encode(s, name, tol); })
