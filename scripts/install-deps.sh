@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libdraco-dev draco libopenmesh-dev libtet1.5-dev libzstd-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
-  libmeshoptimizer-dev clang libclang-rt-14-dev
+  libmeshoptimizer-dev libhtscodecs-dev clang libclang-rt-14-dev
 )
 
 missing=()

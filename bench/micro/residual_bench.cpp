@@ -1,10 +1,15 @@
 // Residual layer on corpus-ext: coded bytes against quantized temporal delta (varint +
 // zstd -19, the thin path) on the same grid values, the same residuals through zstd
-// instead of the range coder, and load (decode) speed. Sequences come from
+// instead of the range coder, the same residuals through Debian's htscodecs (rANS 4x16 and
+// adaptive arithmetic, order 0 and 1; when installed), and load (decode) speed. Sequences come from
 // DCURVE_CORPUS_EXT (environment) or ../shared/corpus-ext; tolerances from
 // DCURVE_RESIDUAL_TOLS (comma list, default "1e-3").
 #include <benchmark/benchmark.h>
 #include <zstd.h>
+#ifdef DCURVE_HAVE_HTSCODECS
+#include <htscodecs/arith_dynamic.h>
+#include <htscodecs/rANS_static4x16.h>
+#endif
 
 #include <cmath>
 #include <cstdio>
@@ -25,6 +30,8 @@ struct Case {
   Model model;  // as read back from the encoded file
   std::vector<int32_t> q;
   size_t delta_zstd = 0, plan_zstd = 0;
+  // The same residual bytes through htscodecs: rANS order 0, 1, arithmetic order 0, 1.
+  size_t plan_hts[4] = {0, 0, 0, 0};
 };
 
 
@@ -33,11 +40,28 @@ size_t zstd_size(const std::vector<uint8_t>& raw) {
   return ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), 19);
 }
 
-size_t varint_zstd(const std::vector<int64_t>& values) {
+// Zigzag varints: one byte per residual below 64 in magnitude, which is nearly all of them.
+std::vector<uint8_t> varint_bytes(const std::vector<int64_t>& values) {
   ByteWriter w;
   for (int64_t v : values) w.varint(zigzag_encode(v));
-  return zstd_size(w.data());
+  return w.data();
 }
+
+size_t varint_zstd(const std::vector<int64_t>& values) { return zstd_size(varint_bytes(values)); }
+
+#ifdef DCURVE_HAVE_HTSCODECS
+// Compressed sizes of `raw` with rANS 4x16 order 0 and 1 and adaptive arithmetic order 0
+// and 1; 0 where a codec fails.
+void hts_sizes(std::vector<uint8_t> raw, size_t out[4]) {
+  for (int k = 0; k < 4; ++k) {
+    unsigned int size = 0;
+    unsigned char* packed = k < 2 ? rans_compress_4x16(raw.data(), unsigned(raw.size()), &size, k)
+                                  : arith_compress(raw.data(), unsigned(raw.size()), &size, k - 2);
+    out[k] = packed ? size : 0;
+    std::free(packed);
+  }
+}
+#endif
 
 std::string corpus() {
   const char* env = std::getenv("DCURVE_CORPUS_EXT");
@@ -69,7 +93,11 @@ const Case* load(const std::string& seq, double tol) {
   c.delta_zstd = varint_zstd(delta);
   PredictorPlan plan;
   if (!decode_predictor_plan(c.model, &plan, &err)) return nullptr;
-  c.plan_zstd = varint_zstd(residual_values(c.model, c.q, plan));
+  const std::vector<int64_t> residuals = residual_values(c.model, c.q, plan);
+  c.plan_zstd = varint_zstd(residuals);
+#ifdef DCURVE_HAVE_HTSCODECS
+  hts_sizes(varint_bytes(residuals), c.plan_hts);
+#endif
   return &cache.emplace(key, std::move(c)).first->second;
 }
 
@@ -91,6 +119,10 @@ void BM_ResidualLoad(benchmark::State& state, std::string seq, double tol) {
   state.counters["delta_zstd_bytes"] = double(c->delta_zstd);
   state.counters["ratio_vs_delta"] = payload / double(c->delta_zstd);
   state.counters["same_residuals_zstd_bytes"] = double(c->plan_zstd);
+#ifdef DCURVE_HAVE_HTSCODECS
+  const char* hts_names[4] = {"same_rans0_bytes", "same_rans1_bytes", "same_arith0_bytes", "same_arith1_bytes"};
+  for (int k = 0; k < 4; ++k) state.counters[hts_names[k]] = double(c->plan_hts[k]);
+#endif
   state.counters["bpvf"] = 8 * payload / vf;
   state.counters["delta_bpvf"] = 8 * double(c->delta_zstd) / vf;
   state.counters["out_MBps"] = benchmark::Counter(4.0 * double(c->q.size()) / 1e6,

@@ -1,15 +1,14 @@
 #include "encoder/fit/fit.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #include "codec/basis.h"
 #include "codec/error.h"
 #include "encoder/fit/param_search.h"
 #include "encoder/fit/projection.h"
+#include "encoder/parallel.h"
 
 namespace dcurve {
 namespace {
@@ -172,17 +171,8 @@ bool fit_curves(const std::vector<CurveFrames>& curves, const FitOptions& option
   fits->assign(curves.size(), CurveFit());
   std::vector<std::string> errors(curves.size());
   std::vector<char> ok(curves.size(), 0);
-  std::atomic<size_t> next{0};
-  auto worker = [&]() {
-    for (size_t i = next++; i < curves.size(); i = next++)
-      ok[i] = fit_curve(curves[i], options, &(*fits)[i], &errors[i]) ? 1 : 0;
-  };
-  int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-  n = int(std::min<size_t>(size_t(n), std::max<size_t>(curves.size(), 1)));
-  std::vector<std::thread> pool;
-  for (int k = 1; k < n; ++k) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  parallel_for(curves.size(), threads,
+               [&](size_t i) { ok[i] = fit_curve(curves[i], options, &(*fits)[i], &errors[i]) ? 1 : 0; });
   for (size_t i = 0; i < curves.size(); ++i)
     if (!ok[i]) return fail(error, "curve " + std::to_string(i) + ": " + errors[i]);
   return true;

@@ -1,0 +1,28 @@
+// The encoder's one way to spread independent jobs over threads. Jobs write only their own
+// outputs, so results never depend on the thread count or on scheduling.
+#pragma once
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace dcurve {
+
+// Calls job(i) once for every i in [0, count), on up to `threads` threads (0: all hardware
+// threads; the calling thread is one of them). Returns when every job has finished.
+template <class Job>
+void parallel_for(size_t count, int threads, Job job) {
+  std::atomic<size_t> next{0};
+  auto worker = [&]() {
+    for (size_t i = next++; i < count; i = next++) job(i);
+  };
+  size_t n = threads > 0 ? size_t(threads) : size_t(std::max(1u, std::thread::hardware_concurrency()));
+  n = std::min(n, std::max<size_t>(count, 1));
+  std::vector<std::thread> pool;
+  for (size_t k = 1; k < n; ++k) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+}  // namespace dcurve
