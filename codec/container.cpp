@@ -137,7 +137,9 @@ std::vector<uint8_t> segment_bytes(const Model& m) {
       w.u8(cm.basis_case);
       w.f32(cm.time_param);
       w.f32(cm.space_param);
-      for (float c : cm.coeffs) w.f32(c);
+      w.u8(uint8_t(cm.coeff_exponent));
+      // Exact for quantized coefficients (validate_model checks that they are).
+      for (float c : cm.coeffs) w.varint(zigzag_encode(int64_t(std::ldexp(double(c), -cm.coeff_exponent))));
     }
   }
   return std::move(w.data());
@@ -209,8 +211,14 @@ bool parse_segments(ByteReader& r, Model* m) {
       cm.basis_case = r.u8();
       cm.time_param = r.f32();
       cm.space_param = r.f32();
+      cm.coeff_exponent = int8_t(r.u8());
+      if (cm.coeff_exponent < kCoeffExponentMin || cm.coeff_exponent > kCoeffExponentMax) return false;
       cm.coeffs.resize(size_t(basis_term_count(cm.basis)));
-      for (float& c : cm.coeffs) c = r.f32();
+      for (float& c : cm.coeffs) {
+        const int64_t k = zigzag_decode(r.varint());
+        if (k <= -(int64_t(1) << kCoeffIntegerBits) || k >= (int64_t(1) << kCoeffIntegerBits)) return false;
+        c = std::ldexp(float(k), cm.coeff_exponent);
+      }
       if (!r.ok) return false;
     }
   }
@@ -262,6 +270,19 @@ bool peek_header(const uint8_t* data, size_t size, ContainerHeader* h) {
 }
 
 float quantize_curve_u(float u) { return u_from_fixed(u_to_fixed(u)); }
+
+int quantize_coefficients(CurveMotion* m, int exponent) {
+  double largest = 0;
+  for (float c : m->coeffs) largest = std::max(largest, std::fabs(double(c)));
+  // |k| = |c| / 2^e rounds to at most 2^24 - 1 when 2^e >= |c| / (2^24 - 1).
+  if (largest > 0 && std::isfinite(largest))
+    exponent = std::max(exponent, int(std::ceil(std::log2(largest / double((1 << kCoeffIntegerBits) - 1)))));
+  exponent = std::min(std::max(exponent, kCoeffExponentMin), kCoeffExponentMax);
+  m->coeff_exponent = int8_t(exponent);
+  for (float& c : m->coeffs)
+    c = std::ldexp(float(std::round(std::ldexp(double(c), -exponent))), exponent);
+  return exponent;
+}
 
 uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections) {
   uint64_t bytes = 0;

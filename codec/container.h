@@ -11,7 +11,7 @@ namespace dcurve {
 
 // Version written by write_container. Readers accept any minor of their major: a newer minor
 // only adds optional sections and hint flags.
-constexpr uint16_t kFormatVersionMajor = 1;
+constexpr uint16_t kFormatVersionMajor = 2;
 constexpr uint16_t kFormatVersionMinor = 0;
 
 struct WriteOptions {
@@ -62,6 +62,16 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
 // The value a reader gets back for curve parameter u (stored as 16-bit fixed point): an
 // encoder fits against these so its closed loop sees what the decoder sees. u in [0, 1].
 float quantize_curve_u(float u);
+
+// Range of CurveMotion::coeff_exponent a file may store, and the bound on the stored
+// integers: |k| < 2^kCoeffIntegerBits, so k * 2^exponent is exact in binary32.
+constexpr int kCoeffExponentMin = -100, kCoeffExponentMax = 40, kCoeffIntegerBits = 24;
+
+// Rounds every coefficient of `m` to the nearest multiple of 2^exponent (to nearest, ties
+// away from zero) and stores the exponent, which is first raised as far as the largest
+// coefficient needs for |k| < 2^24 and clamped to [kCoeffExponentMin, kCoeffExponentMax].
+// The result is exactly what a reader gets back. Returns the exponent used.
+int quantize_coefficients(CurveMotion* m, int exponent);
 
 // Parses and validates a whole file. On failure returns false and a message naming the
 // problem; never reads outside [data, data + size) and bounds every allocation by `size`.

@@ -47,6 +47,9 @@ struct CurveMotion {
   float time_param = 0.f;    // mu (Pde8) or alpha (Pde32), >= 0
   float space_param = 0.f;   // delta (Pde8) or r (Pde32), >= 0
   std::vector<float> coeffs; // basis term count entries (codec/basis.h gives the layout)
+  // Every coefficient is k * 2^coeff_exponent for an integer |k| < 2^24: the file stores k
+  // (quantize_coefficients in codec/container.h), so a coarse exponent makes a small model.
+  int8_t coeff_exponent = -24;
 };
 
 // Frames [first_frame, last_frame] share one fitted motion per curve and axis. Segments

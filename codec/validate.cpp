@@ -1,6 +1,7 @@
 #include "codec/validate.h"
 
 #include "codec/basis.h"
+#include "codec/container.h"
 #include "codec/error.h"
 
 #include <algorithm>
@@ -65,8 +66,13 @@ bool validate_model(const Model& m, std::string* error) {
       if (!(std::isfinite(cm.time_param) && cm.time_param >= 0 && cm.time_param <= kBasisMaxParam &&
             std::isfinite(cm.space_param) && cm.space_param >= 0 && cm.space_param <= kBasisMaxParam))
         return fail(error, "basis parameter out of range");
-      for (float v : cm.coeffs)
-        if (!std::isfinite(v)) return fail(error, "coefficient is not finite");
+      if (cm.coeff_exponent < kCoeffExponentMin || cm.coeff_exponent > kCoeffExponentMax)
+        return fail(error, "coefficient exponent out of range");
+      for (float v : cm.coeffs) {
+        const double k = std::ldexp(double(v), -cm.coeff_exponent);
+        if (!(std::isfinite(v) && k == std::round(k) && std::fabs(k) < std::ldexp(1.0, kCoeffIntegerBits)))
+          return fail(error, "coefficient is not an integer multiple of 2^exponent below 2^24 of them");
+      }
     }
   }
   if (!m.segments.empty() && m.segments.back().last_frame != (F > 1 ? F - 1 : 0))

@@ -113,6 +113,9 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     mo.basis = opt.model == ModelChoice::Pde32 ? Basis::Pde32 : Basis::Pde8;
     mo.segment_frames = opt.segment_frames;
     mo.threads = opt.threads;
+    // A tenth of the tolerance: the residual layer absorbs it at the frames, and in-betweens
+    // stay within a tenth of the tolerance of the unrounded fit.
+    mo.coefficient_error = 0.1 * opt.tolerance * L;
     if (!fit_motion_model(anim, m.curves, anim.frames[0], mo, &m.segments, error)) return false;
     rep.model_bytes = motion_model_raw_bytes(m.segments);
   }

@@ -121,6 +121,7 @@ inline void add_pde_motions(Model* m, uint32_t seed = 1) {
       cm.space_param = params[rng() % 5];
       cm.coeffs.resize(size_t(basis_term_count(cm.basis)));
       for (float& c : cm.coeffs) c = coeff(rng);
+      quantize_coefficients(&cm, -int(rng() % 30));  // what a file can store, coarse or fine
     }
 }
 

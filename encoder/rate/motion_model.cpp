@@ -1,10 +1,39 @@
 #include "encoder/rate/motion_model.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "codec/basis.h"
+#include "codec/bytes.h"
 #include "codec/container.h"
 #include "encoder/fit/fit.h"
 
 namespace dcurve {
+namespace {
+
+// Rounds the coefficients of `m` as coarsely as `budget` allows: a coefficient error of at
+// most 2^(e-1) changes w by at most 2^(e-1) * sum_ij max|T_i| max|U_j| over the segment's
+// tau samples and the curve's u values.
+void quantize_for_budget(const CurveFrames& samples, double budget, CurveMotion* m) {
+  if (m->basis == Basis::Zero) return;
+  const int nt = basis_time_count(m->basis), ns = basis_space_count(m->basis);
+  double t[4], s[8], max_t[4] = {0, 0, 0, 0}, max_s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (double tau : samples.tau) {
+    basis_time(m->basis, m->basis_case, m->time_param, tau, t);
+    for (int i = 0; i < nt; ++i) max_t[i] = std::max(max_t[i], std::fabs(t[i]));
+  }
+  for (double u : samples.u) {
+    basis_space(m->basis, m->basis_case, m->space_param, u, s);
+    for (int j = 0; j < ns; ++j) max_s[j] = std::max(max_s[j], std::fabs(s[j]));
+  }
+  double reach = 0;
+  for (int i = 0; i < nt; ++i)
+    for (int j = 0; j < ns; ++j) reach += max_t[i] * max_s[j];
+  const int exponent = reach > 0 && budget > 0 ? int(std::floor(std::log2(2.0 * budget / reach))) : kCoeffExponentMax;
+  quantize_coefficients(m, exponent);
+}
+
+}  // namespace
 
 std::vector<std::pair<uint32_t, uint32_t>> plan_segments(uint32_t frame_count, uint32_t segment_frames) {
   std::vector<std::pair<uint32_t, uint32_t>> out;
@@ -52,7 +81,11 @@ bool fit_motion_model(const Animation& anim, const Curves& curves, const std::ve
     seg.mode = options.mode;
     seg.motion.resize(size_t(C) * 3);
     for (uint32_t c = 0; c < C; ++c)
-      for (int a = 0; a < 3; ++a) seg.motion[size_t(c) * 3 + a] = fits[c].axis[a].motion;
+      for (int a = 0; a < 3; ++a) {
+        CurveMotion& m = seg.motion[size_t(c) * 3 + a];
+        m = fits[c].axis[a].motion;
+        quantize_for_budget(samples[c], options.coefficient_error, &m);
+      }
     segments->push_back(std::move(seg));
   }
   return true;
@@ -61,7 +94,16 @@ bool fit_motion_model(const Animation& anim, const Curves& curves, const std::ve
 uint64_t motion_model_raw_bytes(const std::vector<Segment>& segments) {
   uint64_t bytes = 0;
   for (const Segment& s : segments)
-    for (const CurveMotion& m : s.motion) bytes += 1 + (m.basis == Basis::Zero ? 0 : 9 + 4 * m.coeffs.size());
+    for (const CurveMotion& m : s.motion) {
+      bytes += 1;
+      if (m.basis == Basis::Zero) continue;
+      bytes += 10;
+      for (float c : m.coeffs)
+        for (uint64_t z = zigzag_encode(int64_t(std::ldexp(double(c), -m.coeff_exponent))); ; z >>= 7) {
+          ++bytes;
+          if (z < 0x80) break;
+        }
+    }
   return bytes;
 }
 

@@ -20,6 +20,10 @@ struct MotionModelOptions {
   // follows the model, and with few frames per segment a large mu lets exponentials that
   // cancel at the frames swing far between them: a small bound keeps in-betweens smooth.
   double max_time_param = 3.0;
+  // Largest change, model units, that rounding a motion's coefficients may make to it on
+  // its curve's vertices and the segment's frames (> 0): the step of the stored integers
+  // follows from it. The residual layer corrects the frames; in-betweens move this much.
+  double coefficient_error = 1e-4;
 };
 
 // Frame boundaries of segments of about `segment_frames` steps tiling [0, frame_count - 1];
@@ -33,6 +37,7 @@ bool fit_motion_model(const Animation& anim, const Curves& curves, const std::ve
                       const MotionModelOptions& options, std::vector<Segment>* segments, std::string* error);
 
 // Stored size of the model in bytes before entropy coding: what it costs the file.
+// Coefficients are counted at their stored varint sizes.
 uint64_t motion_model_raw_bytes(const std::vector<Segment>& segments);
 
 }  // namespace dcurve
