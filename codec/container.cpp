@@ -66,16 +66,19 @@ std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, boo
 std::vector<uint8_t> face_bytes(const Model& m, const WriteOptions& options) {
   std::vector<uint8_t> exact = encode_faces(m.faces, FaceOrder::Exact);
   if (options.face_layout == WriteOptions::FaceLayout::Exact) return exact;
-  // Traversal may reorder triangles; other parts of the file (the residual coder's
-  // neighbours) were built on model.faces, so it is used only when it gives them back as is.
+  bool unused;
+  auto stored_size = [&](const std::vector<uint8_t>& raw) { return stored_form(raw, options.zstd_level, &unused).size(); };
+  // Compact reproduces any list exactly; Traversal may reorder triangles, and other parts of
+  // the file (the residual coder's neighbours) were built on model.faces, so it is a
+  // candidate only when it gives them back as is.
+  std::vector<uint8_t> best = encode_faces(m.faces, FaceOrder::Compact);
+  if (stored_size(exact) < stored_size(best)) best = std::move(exact);
   std::vector<uint8_t> traversal = encode_faces(m.faces, FaceOrder::Traversal);
   std::vector<uint32_t> back;
-  if (!decode_faces(traversal.data(), traversal.size(), &back, nullptr) || back != m.faces) return exact;
-  bool unused;
-  return stored_form(traversal, options.zstd_level, &unused).size() <
-                 stored_form(exact, options.zstd_level, &unused).size()
-             ? traversal
-             : exact;
+  if (decode_faces(traversal.data(), traversal.size(), &back, nullptr) && back == m.faces &&
+      stored_size(traversal) < stored_size(best))
+    best = std::move(traversal);
+  return best;
 }
 
 void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,

@@ -19,9 +19,9 @@ struct WriteOptions {
   // predicts from whatever neighbours the file carries, so a model written without faces
   // must have had its residual coded with model.faces empty (encode_animation does this).
   bool connectivity = true;
-  // A reader always gets model.faces back exactly. Smallest uses the FACE Traversal layout
-  // when model.faces is already in traversal_order (codec/faces.h) and that codes smaller;
-  // Exact always uses the Exact layout.
+  // A reader always gets model.faces back exactly. Smallest picks whichever FACE layout
+  // stores smallest: Exact, Compact, or Traversal when model.faces is already in
+  // traversal_order (codec/faces.h); Exact always uses the Exact layout.
   enum class FaceLayout { Smallest, Exact };
   FaceLayout face_layout = FaceLayout::Smallest;
   int zstd_level = 19;       // 1..22
@@ -35,7 +35,7 @@ struct SectionInfo {
   uint64_t offset = 0;        // file offset of the section header
   uint64_t stored_bytes = 0;  // bytes in the file (after the 28-byte section header)
   uint64_t raw_bytes = 0;     // bytes after decompression
-  int face_layout = -1;       // FACE only: 0 exact, 1 traversal (codec/faces.h)
+  int face_layout = -1;       // FACE only: 0 exact, 1 traversal, 2 compact (codec/faces.h)
 };
 
 // The fixed 20-byte file header.

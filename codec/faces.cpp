@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "codec/bytes.h"
+#include "codec/faces_compact.h"
 
 namespace dcurve {
 namespace {
@@ -239,7 +240,12 @@ bool decode_traversal(ByteReader& r, std::vector<uint32_t>* faces, std::string* 
 }  // namespace
 
 std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder order) {
-  return order == FaceOrder::Exact ? encode_exact(faces) : encode_traversal(faces);
+  if (order == FaceOrder::Traversal) return encode_traversal(faces);
+  if (order == FaceOrder::Compact) {
+    std::vector<uint8_t> out{uint8_t(FaceOrder::Compact)};
+    if (encode_compact_faces(faces, &out)) return out;
+  }
+  return encode_exact(faces);
 }
 
 std::vector<uint32_t> traversal_order(const std::vector<uint32_t>& faces) {
@@ -257,6 +263,11 @@ bool decode_faces(const uint8_t* bytes, size_t size, std::vector<uint32_t>* face
   if (!r.ok) why = "face section is empty";
   else if (layout == uint8_t(FaceOrder::Exact)) ok = decode_exact(r, faces, &why);
   else if (layout == uint8_t(FaceOrder::Traversal)) ok = decode_traversal(r, faces, &why);
+  else if (layout == uint8_t(FaceOrder::Compact)) {
+    // The range-coded stream runs to the end of the payload.
+    ok = decode_compact_faces(bytes + r.position(), r.remaining(), faces, &why);
+    r.take(r.remaining());
+  }
   else why = "unknown face layout " + std::to_string(layout);
   if (ok && r.remaining() != 0) ok = false, why = "face section has trailing bytes";
   if (!ok) {
