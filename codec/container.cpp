@@ -63,19 +63,20 @@ std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, boo
   return stored;
 }
 
-std::vector<uint8_t> face_bytes(const Model& m, const WriteOptions& options) {
-  std::vector<uint8_t> exact = encode_faces(m.faces, FaceOrder::Exact);
+std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
+  std::vector<uint8_t> exact = encode_faces(faces, FaceOrder::Exact);
   if (options.face_layout == WriteOptions::FaceLayout::Exact) return exact;
+  if (options.face_layout == WriteOptions::FaceLayout::Compact) return encode_faces(faces, FaceOrder::Compact);
   bool unused;
   auto stored_size = [&](const std::vector<uint8_t>& raw) { return stored_form(raw, options.zstd_level, &unused).size(); };
   // Compact reproduces any list exactly; Traversal may reorder triangles, and other parts of
   // the file (the residual coder's neighbours) were built on model.faces, so it is a
   // candidate only when it gives them back as is.
-  std::vector<uint8_t> best = encode_faces(m.faces, FaceOrder::Compact);
+  std::vector<uint8_t> best = encode_faces(faces, FaceOrder::Compact);
   if (stored_size(exact) < stored_size(best)) best = std::move(exact);
-  std::vector<uint8_t> traversal = encode_faces(m.faces, FaceOrder::Traversal);
+  std::vector<uint8_t> traversal = encode_faces(faces, FaceOrder::Traversal);
   std::vector<uint32_t> back;
-  if (decode_faces(traversal.data(), traversal.size(), &back, nullptr) && back == m.faces &&
+  if (decode_faces(traversal.data(), traversal.size(), &back, nullptr) && back == faces &&
       stored_size(traversal) < stored_size(best))
     best = std::move(traversal);
   return best;
@@ -235,7 +236,7 @@ bool parse_residual(ByteReader& r, Model* m) {
 std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options) {
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;
   sections.emplace_back(kMeta, meta_bytes(model));
-  if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model, options));
+  if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model.faces, options));
   sections.emplace_back(kCurves, curve_bytes(model));
   sections.emplace_back(kSegments, segment_bytes(model));
   if (model.residual.step > 0) sections.emplace_back(kResidual, residual_bytes(model));
@@ -265,6 +266,11 @@ bool peek_header(const uint8_t* data, size_t size, ContainerHeader* h) {
 }
 
 float quantize_curve_u(float u) { return u_from_fixed(u_to_fixed(u)); }
+
+uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
+  bool unused;
+  return stored_form(face_bytes(faces, options), options.zstd_level, &unused).size();
+}
 
 uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections) {
   uint64_t bytes = 0;

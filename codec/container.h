@@ -21,8 +21,9 @@ struct WriteOptions {
   bool connectivity = true;
   // A reader always gets model.faces back exactly. Smallest picks whichever FACE layout
   // stores smallest: Exact, Compact, or Traversal when model.faces is already in
-  // traversal_order (codec/faces.h); Exact always uses the Exact layout.
-  enum class FaceLayout { Smallest, Exact };
+  // traversal_order (codec/faces.h); Exact and Compact always use that layout (Compact falls
+  // back to Exact for lists beyond its triangle-per-byte bound).
+  enum class FaceLayout { Smallest, Exact, Compact };
   FaceLayout face_layout = FaceLayout::Smallest;
   int zstd_level = 19;       // 1..22
 };
@@ -52,6 +53,10 @@ constexpr size_t kSectionHeaderBytes = 28;
 // Bytes the FACE section takes in the file, its section header included (0 without one):
 // what dropping connectivity would save.
 uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections);
+
+// Payload bytes the FACE section of write_container(model, options) would store for
+// model.faces = faces (section header not included): lets an encoder compare face orders.
+uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options = {});
 
 bool peek_header(const uint8_t* data, size_t size, ContainerHeader* header);
 

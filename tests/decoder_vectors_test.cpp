@@ -46,6 +46,9 @@ std::vector<Vector> recipes() {
   sheet.faces = traversal_order(sheet.faces);
   sheet.residual.payload = encode_residuals(sheet, testing::grid(sheet.meta.vertex_count, 4));
   v.push_back({"sheet_traversal_faces", sheet, {}});
+  // The same faces in the Compact layout: also the fuzzer's seed for that coder.
+  v.push_back({"sheet_compact_faces", sheet, {}});
+  v.back().options.face_layout = Layout::Compact;
 
   Model model_only = small_model(5, {0, 4});
   add_pde_motions(&model_only, 3);
