@@ -64,21 +64,23 @@ std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, boo
 }
 
 std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
-  std::vector<uint8_t> exact = encode_faces(faces, FaceOrder::Exact);
-  if (options.face_layout == WriteOptions::FaceLayout::Exact) return exact;
-  if (options.face_layout == WriteOptions::FaceLayout::Compact) return encode_faces(faces, FaceOrder::Compact);
+  using Layout = WriteOptions::FaceLayout;
+  std::vector<uint8_t> best = encode_faces(faces, FaceOrder::Exact);
+  if (options.face_layout == Layout::Exact) return best;
   bool unused;
   auto stored_size = [&](const std::vector<uint8_t>& raw) { return stored_form(raw, options.zstd_level, &unused).size(); };
-  // Compact reproduces any list exactly; Traversal may reorder triangles, and other parts of
-  // the file (the residual coder's neighbours) were built on model.faces, so it is a
-  // candidate only when it gives them back as is.
-  std::vector<uint8_t> best = encode_faces(faces, FaceOrder::Compact);
-  if (stored_size(exact) < stored_size(best)) best = std::move(exact);
+  auto consider = [&](std::vector<uint8_t> raw, Layout layout) {
+    if (options.face_layout == layout || (options.face_layout == Layout::Smallest && stored_size(raw) < stored_size(best)))
+      best = std::move(raw);
+  };
+  // Compact reproduces any list exactly (encode_faces falls back to Exact beyond its bound).
+  consider(encode_faces(faces, FaceOrder::Compact), Layout::Compact);
+  // Traversal may reorder triangles, and other parts of the file (the residual coder's
+  // neighbours) were built on model.faces: a candidate only when it gives them back as is.
   std::vector<uint8_t> traversal = encode_faces(faces, FaceOrder::Traversal);
   std::vector<uint32_t> back;
-  if (decode_faces(traversal.data(), traversal.size(), &back, nullptr) && back == faces &&
-      stored_size(traversal) < stored_size(best))
-    best = std::move(traversal);
+  if (decode_faces(traversal.data(), traversal.size(), &back, nullptr) && back == faces)
+    consider(std::move(traversal), Layout::Traversal);
   return best;
 }
 

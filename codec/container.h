@@ -21,9 +21,10 @@ struct WriteOptions {
   bool connectivity = true;
   // A reader always gets model.faces back exactly. Smallest picks whichever FACE layout
   // stores smallest: Exact, Compact, or Traversal when model.faces is already in
-  // traversal_order (codec/faces.h); Exact and Compact always use that layout (Compact falls
-  // back to Exact for lists beyond its triangle-per-byte bound).
-  enum class FaceLayout { Smallest, Exact, Compact };
+  // traversal_order (codec/faces.h). Each other value forces that layout when it can hold
+  // model.faces (Traversal: a list in traversal order; Compact: within its triangle-per-byte
+  // bound) and falls back to Exact otherwise: for test vectors and measurements.
+  enum class FaceLayout { Smallest, Exact, Traversal, Compact };
   FaceLayout face_layout = FaceLayout::Smallest;
   int zstd_level = 19;       // 1..22
 };
