@@ -6,6 +6,7 @@
 
 #include "codec/bytes.h"
 #include "codec/error.h"
+#include "codec/id_ranks.h"
 #include "codec/int_coder.h"
 #include "codec/range_coder.h"
 
@@ -17,8 +18,9 @@ constexpr int64_t kMaxId = int64_t(UINT32_MAX) - 1;  // ids lie in [0, 2^32 - 2]
 // closes a triangle is among the last few at that vertex; a bound keeps a hostile fan cheap.
 constexpr int kRing = 8;
 constexpr int kMaxCandidates = 2 * kRing;
-// New-vertex id predictors: a, b, a + b - c (ids of a grid numbered row by row form
-// parallelograms), the last new id + 1 (meshes numbered in a traversal of their own).
+// New-vertex id predictors, from which the id's rank among the unused ids is coded: the
+// larger and the smaller gate id, a + b - c (ids of a grid numbered row by row form
+// parallelograms), the last new id (meshes numbered in a traversal of their own).
 constexpr int kPredictors = 4;
 constexpr int kGapClasses = 4;
 constexpr int kFanClasses = 7;
@@ -64,7 +66,9 @@ class Region {
   bool seen(uint32_t v) const { return slot_.count(v) != 0; }
   void mark_seen(uint32_t v) {
     if (slot_.emplace(v, uint32_t(rings_.size())).second) rings_.emplace_back();
+    ids_.insert(v);
   }
+  const IdRanks& ids() const { return ids_; }
   // Triangles out around v so far, clamped to kFanClasses - 1.
   int fan(uint32_t v) const { return int(std::min<uint32_t>(ring(v).into.count, kFanClasses - 1)); }
   bool has_edge(uint32_t from, uint32_t to) const { return edges_.count(edge_key(from, to)) != 0; }
@@ -111,29 +115,30 @@ class Region {
   std::unordered_map<uint32_t, uint32_t> slot_;
   std::vector<Rings> rings_;
   std::unordered_set<uint64_t> edges_;
+  IdRanks ids_;
 };
 
 // Picks, without side information, the predictor that would have coded the recent new ids
-// cheapest (an exponentially decaying sum of their delta bit lengths).
+// cheapest (an exponentially decaying sum of the bit lengths of their ranks).
 class NewIdPredictor {
  public:
   void predict(uint32_t a, uint32_t b, uint32_t c, int64_t* p) const {
-    p[0] = a;
-    p[1] = b;
+    p[0] = std::max(a, b);
+    p[1] = std::min(a, b);
     p[2] = int64_t(a) + int64_t(b) - int64_t(c);
-    p[3] = last_new_ + 1;
+    p[3] = last_new_;
   }
   int best() const { return int(std::min_element(score_, score_ + kPredictors) - score_); }
-  void learn(const int64_t* p, int64_t id) {
+  void learn(const int64_t* ranks, int64_t id) {
     for (int i = 0; i < kPredictors; ++i)
-      score_[i] = score_[i] - (score_[i] >> 4) + 16 * uint32_t(bit_length(magnitude(id - p[i])));
+      score_[i] = score_[i] - (score_[i] >> 4) + 16 * uint32_t(bit_length(magnitude(ranks[i])));
     last_new_ = id;
   }
   void starts_at(int64_t id) { last_new_ = id; }
 
  private:
   uint32_t score_[kPredictors] = {};
-  int64_t last_new_ = -1;
+  int64_t last_new_ = 0;
 };
 
 // The two directions of one traversal: the encoder's Io codes the decision it is given and
@@ -219,13 +224,17 @@ bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* erro
         while (i + 1 < k && io.bit(i == 0 ? m.first_index[fa][fb] : m.index[i > 1], at > i)) ++i;
         id = cand[i];
       } else if (io.bit(m.is_new[k > 0], !region.seen(x))) {
-        int64_t p[kPredictors];
+        int64_t p[kPredictors], ranks[kPredictors];
         predictor.predict(a, b, c, p);
         const int best = predictor.best();
         const int ctx = best * kGapClasses + gap_class(a, b), sign_ctx = best * 3 + (b > a) + (b >= a);
-        id = p[best] + io.integer(m.ints, ctx, sign_ctx, int64_t(x) - p[best]);
-        if (!accept(region, id, true, error)) return false;
-        predictor.learn(p, id);
+        const int64_t rank = io.integer(m.ints, ctx, sign_ctx, Io::kDecoding ? 0 : region.ids().rank(p[best], x));
+        uint32_t fresh = 0;
+        if (!region.ids().unrank(p[best], rank, &fresh)) return fail(error, "face vertex rank names no id");
+        for (int i = 0; i < kPredictors; ++i) ranks[i] = region.ids().rank(p[i], fresh);
+        if (!accept(region, fresh, true, error)) return false;
+        predictor.learn(ranks, fresh);
+        id = fresh;
       } else {
         id = a + io.integer(m.ints, kCtxFar, kSignOther, int64_t(x) - a);
         if (!accept(region, id, false, error)) return false;

@@ -16,7 +16,7 @@ namespace dcurve {
 // Triangles the decoder accepts per payload byte (plus a fixed allowance): bounds the work
 // and memory a small hostile payload can ask for. Real meshes need well under 16 per byte.
 constexpr uint64_t kCompactFreeTriangles = 4096;
-constexpr uint64_t kCompactTrianglesPerByte = 256;
+constexpr uint64_t kCompactTrianglesPerByte = 64;
 
 // Appends the layout-2 payload for `faces` (3 ids per triangle, each < 2^32 - 1) after the
 // layout byte, which the caller writes. False (nothing usable appended) when the list is
