@@ -24,12 +24,13 @@ constexpr int kMaxCandidates = 2 * kRing;
 constexpr int kPredictors = 4;
 constexpr int kGapClasses = 4;
 constexpr int kFanClasses = 7;
+constexpr int kSideGap = 2;
 // Integer coder contexts: new-vertex deltas per (predictor, gap class), then three singles.
 constexpr int kCtxFar = kPredictors * kGapClasses;
 constexpr int kCtxStartNew = kCtxFar + 1;
 constexpr int kCtxStartSeen = kCtxFar + 2;
 constexpr int kIntContexts = kCtxFar + 3;
-constexpr int kSignOther = kPredictors * 3;
+constexpr int kSignOther = kPredictors * 9;
 constexpr int kSignContexts = kSignOther + 1;
 
 int bit_length(uint64_t m) {
@@ -56,6 +57,7 @@ struct Models {
   BitModel index[2];                               // positions 1 and >= 2
   BitModel is_new[2];    // [candidates > 0]
   BitModel start_new;
+  BitModel far_side[kGapClasses][2];  // [gap][b > a]: base the rank on min(a, b), not max(a, b)
   AdaptiveIntCoder ints{kIntContexts, kSignContexts};
 };
 
@@ -131,7 +133,7 @@ class NewIdPredictor {
   int best() const { return int(std::min_element(score_, score_ + kPredictors) - score_); }
   void learn(const int64_t* ranks, int64_t id) {
     for (int i = 0; i < kPredictors; ++i)
-      score_[i] = score_[i] - (score_[i] >> 4) + 16 * uint32_t(bit_length(magnitude(ranks[i])));
+      score_[i] = score_[i] - (score_[i] >> 7) + 16 * uint32_t(bit_length(magnitude(ranks[i])));
     last_new_ = id;
   }
   void starts_at(int64_t id) { last_new_ = id; }
@@ -183,6 +185,7 @@ bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* erro
   Region region;
   NewIdPredictor predictor;
   int64_t ref = 0;  // the last id coded at a component start
+  int64_t last_rank = 0;
   uint64_t head = 0, n = 0;
   // The encoder's answer for corner c of triangle t (unused when decoding).
   auto truth = [&](uint64_t t, int c) { return Io::kDecoding ? 0u : (*list)[size_t(3 * t) + c]; };
@@ -226,14 +229,21 @@ bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* erro
       } else if (io.bit(m.is_new[k > 0], !region.seen(x))) {
         int64_t p[kPredictors], ranks[kPredictors];
         predictor.predict(a, b, c, p);
-        const int best = predictor.best();
-        const int ctx = best * kGapClasses + gap_class(a, b), sign_ctx = best * 3 + (b > a) + (b >= a);
+        int best = predictor.best();
+        const int gap = gap_class(a, b);
+        // Far apart gate ids: a new vertex is usually near one of them, rarely between.
+        if (best < 2 && gap >= kSideGap) {
+          const bool use_min = !Io::kDecoding && magnitude(region.ids().rank(p[1], x)) < magnitude(region.ids().rank(p[0], x));
+          best = io.bit(m.far_side[gap][b > a], use_min);
+        }
+        const int ctx = best * kGapClasses + gap, sign_ctx = best * 9 + 3 * ((b > a) + (b >= a)) + (last_rank > 0) + (last_rank >= 0);
         const int64_t rank = io.integer(m.ints, ctx, sign_ctx, Io::kDecoding ? 0 : region.ids().rank(p[best], x));
         uint32_t fresh = 0;
         if (!region.ids().unrank(p[best], rank, &fresh)) return fail(error, "face vertex rank names no id");
         for (int i = 0; i < kPredictors; ++i) ranks[i] = region.ids().rank(p[i], fresh);
         if (!accept(region, fresh, true, error)) return false;
         predictor.learn(ranks, fresh);
+        last_rank = rank;
         id = fresh;
       } else {
         id = a + io.integer(m.ints, kCtxFar, kSignOther, int64_t(x) - a);
