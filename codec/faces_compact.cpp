@@ -43,8 +43,8 @@ uint64_t edge_key(uint32_t from, uint32_t to) { return uint64_t(from) << 32 | to
 
 // How far apart the ids of the gate's two vertices are: a gate between nearby ids tends to
 // get a new vertex with a nearby id too.
-int gap_class(uint32_t a, uint32_t b) {
-  const int n = bit_length(magnitude(int64_t(a) - int64_t(b)));
+int gap_class(uint64_t free_between) {
+  const int n = bit_length(free_between);
   return n <= 1 ? 0 : n <= 3 ? 1 : n <= 6 ? 2 : 3;
 }
 
@@ -230,11 +230,12 @@ bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* erro
         int64_t p[kPredictors], ranks[kPredictors];
         predictor.predict(a, b, c, p);
         int best = predictor.best();
-        const int gap = gap_class(a, b);
+        const int gap = gap_class(magnitude(int64_t(a) - int64_t(b)));
+        const int free_gap = gap_class(region.ids().free_in(int64_t(std::min(a, b)) + 1, int64_t(std::max(a, b)) - 1));
         // Far apart gate ids: a new vertex is usually near one of them, rarely between.
-        if (best < 2 && gap >= kSideGap) {
+        if (best < 2 && free_gap >= kSideGap) {
           const bool use_min = !Io::kDecoding && magnitude(region.ids().rank(p[1], x)) < magnitude(region.ids().rank(p[0], x));
-          best = io.bit(m.far_side[gap][b > a], use_min);
+          best = io.bit(m.far_side[free_gap][b > a], use_min);
         }
         const int ctx = best * kGapClasses + gap, sign_ctx = best * 9 + 3 * ((b > a) + (b >= a)) + (last_rank > 0) + (last_rank >= 0);
         const int64_t rank = io.integer(m.ints, ctx, sign_ctx, Io::kDecoding ? 0 : region.ids().rank(p[best], x));
