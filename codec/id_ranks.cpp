@@ -24,7 +24,7 @@ bool IdRanks::contains(uint32_t id) const {
   auto it = lows_.find(id >> kLowBits);
   if (it == lows_.end()) return false;
   const uint32_t low = id & ((1u << kLowBits) - 1);
-  return (it->second[low / 64] >> (low % 64)) & 1;
+  return (it->second.bits[low / 64] >> (low % 64)) & 1;
 }
 
 void IdRanks::insert(uint32_t id) {
@@ -33,9 +33,9 @@ void IdRanks::insert(uint32_t id) {
   const uint32_t low = id & ((1u << kLowBits) - 1);
   top_.add(top);
   mids_.try_emplace(top, size_t(1) << kMidBits).first->second.add(mid);
-  std::vector<uint64_t>& bits = lows_[id >> kLowBits];
-  if (bits.empty()) bits.assign((size_t(1) << kLowBits) / 64, 0);
-  bits[low / 64] |= uint64_t(1) << (low % 64);
+  Low& l = lows_[id >> kLowBits];
+  l.bits[low / 64] |= uint64_t(1) << (low % 64);
+  for (uint32_t w = low / 64 + 1; w < (1u << kLowBits) / 64; ++w) ++l.before[w];
 }
 
 uint64_t IdRanks::count_below(uint64_t y) const {
@@ -47,17 +47,22 @@ uint64_t IdRanks::count_below(uint64_t y) const {
   if (m != mids_.end()) n += m->second.below(mid);
   auto l = lows_.find(uint32_t(y >> kLowBits));
   if (l != lows_.end()) {
-    for (uint32_t w = 0; w < low / 64; ++w) n += std::bitset<64>(l->second[w]).count();
-    if (low % 64) n += std::bitset<64>(l->second[low / 64] & ((uint64_t(1) << (low % 64)) - 1)).count();
+    n += l->second.before[low / 64];
+    if (low % 64) n += std::bitset<64>(l->second.bits[low / 64] & ((uint64_t(1) << (low % 64)) - 1)).count();
   }
   return n;
 }
 
 uint64_t IdRanks::free_in(int64_t lo, int64_t hi) const {
   lo = std::max<int64_t>(lo, 0);
-  hi = std::min(hi, kMaxId);
-  if (lo > hi) return 0;
-  return uint64_t(hi - lo + 1) - (count_below(uint64_t(hi) + 1) - count_below(uint64_t(lo)));
+  if (lo > std::min(hi, kMaxId)) return 0;
+  return free_from(lo, count_below(uint64_t(lo)), hi);
+}
+
+uint64_t IdRanks::free_from(int64_t first, uint64_t used_before_first, int64_t last) const {
+  last = std::min(last, kMaxId);
+  if (first > last) return 0;
+  return uint64_t(last - first + 1) - (count_below(uint64_t(last) + 1) - used_before_first);
 }
 
 int64_t IdRanks::rank(int64_t from, uint32_t id) const {
@@ -71,25 +76,32 @@ bool IdRanks::unrank(int64_t from, int64_t rank, uint32_t* id) const {
     *id = uint32_t(from);
     return true;
   }
-  // free_in is monotone in each bound: binary search for the id where the count reaches |rank|.
+  // The answer lies within (used ids on that side) of from + rank: binary search there for
+  // the id where the count of unused ids reaches |rank|, one end of the range fixed.
+  const uint64_t total = count_below(uint64_t(1) << 32);
   if (rank > 0) {
-    int64_t lo = std::max<int64_t>(from + 1, 0), hi = kMaxId;
-    if (lo > hi || free_in(lo, hi) < uint64_t(rank)) return false;
-    const int64_t first = lo;
+    const int64_t first = std::max<int64_t>(from + 1, 0);
+    if (first > kMaxId) return false;
+    const uint64_t used_before = count_below(uint64_t(first));
+    int64_t lo = first + rank - 1, hi = std::min(kMaxId, lo + int64_t(total - used_before));
+    if (lo > kMaxId || free_from(first, used_before, hi) < uint64_t(rank)) return false;
     while (lo < hi) {
       const int64_t mid = lo + (hi - lo) / 2;
-      if (free_in(first, mid) >= uint64_t(rank)) hi = mid;
+      if (free_from(first, used_before, mid) >= uint64_t(rank)) hi = mid;
       else lo = mid + 1;
     }
     *id = uint32_t(lo);
     return true;
   }
-  int64_t lo = 0, hi = std::min(from - 1, kMaxId);
-  if (hi < 0 || free_in(lo, hi) < uint64_t(-rank)) return false;
-  const int64_t last = hi;
+  const int64_t last = std::min(from - 1, kMaxId);
+  if (last < 0) return false;
+  const uint64_t used_through_last = count_below(uint64_t(last) + 1);
+  auto free_down = [&](int64_t y) { return uint64_t(last - y + 1) - (used_through_last - count_below(uint64_t(y))); };
+  int64_t hi = last + rank + 1, lo = std::max<int64_t>(0, hi - int64_t(used_through_last));
+  if (hi < 0 || free_down(lo) < uint64_t(-rank)) return false;
   while (lo < hi) {
     const int64_t mid = lo + (hi - lo + 1) / 2;
-    if (free_in(mid, last) >= uint64_t(-rank)) lo = mid;
+    if (free_down(mid) >= uint64_t(-rank)) lo = mid;
     else hi = mid - 1;
   }
   *id = uint32_t(lo);

@@ -35,7 +35,15 @@ class IdRanks {
   };
   Fenwick top_;                                   // per top bucket
   std::unordered_map<uint32_t, Fenwick> mids_;    // per used top bucket: per mid bucket
-  std::unordered_map<uint32_t, std::vector<uint64_t>> lows_;  // per used (top, mid): bits
+  // Per used (top, mid): the ids' bits, 64 per word, and per word the ids in earlier words.
+  struct Low {
+    uint64_t bits[(1u << kLowBits) / 64] = {};
+    uint16_t before[(1u << kLowBits) / 64] = {};
+  };
+  std::unordered_map<uint32_t, Low> lows_;
+  // Ids in [0, y) given count_below(first) for some first <= y: the binary searches of
+  // unrank keep one end fixed.
+  uint64_t free_from(int64_t first, uint64_t used_before_first, int64_t last) const;
 };
 
 }  // namespace dcurve
