@@ -4,8 +4,10 @@
 
 #include <filesystem>
 #include <random>
+#include <set>
 
 #include "codec/faces.h"
+#include "codec/id_ranks.h"
 #include "encoder/io/frames.h"
 
 namespace dcurve {
@@ -39,6 +41,44 @@ std::vector<uint32_t> grid(uint32_t W, uint32_t H, uint32_t base) {
       f.insert(f.end(), {v, v + 1, up + 1, v, up + 1, up});
     }
   return f;
+}
+
+// Ranks among unused ids against a plain std::set count, at both ends of the id range.
+TEST(IdRanks, RankAndUnrankMatchACountingOracle) {
+  const int64_t top = int64_t(UINT32_MAX) - 1;
+  std::mt19937 rng(5);
+  IdRanks ids;
+  std::set<int64_t> used;
+  for (int i = 0; i < 600; ++i) used.insert(rng() % 2000);
+  for (int64_t v : {top, top - 2, int64_t(0), int64_t(1) << 20, (int64_t(1) << 20) + 1}) used.insert(v);
+  for (int64_t v : used) ids.insert(uint32_t(v));
+  auto used_in = [&](int64_t lo, int64_t hi) {
+    return int64_t(std::distance(used.lower_bound(lo), used.upper_bound(hi)));
+  };
+  auto oracle = [&](int64_t from, int64_t x) -> int64_t {
+    if (x == from) return 0;
+    const int64_t lo = x > from ? std::max<int64_t>(from + 1, 0) : x, hi = x > from ? x : std::min(from - 1, top);
+    const int64_t n = hi - lo + 1 - used_in(lo, hi);
+    return x > from ? n : -n;
+  };
+  EXPECT_EQ(ids.count_below(uint64_t(1) << 32), used.size());
+  for (int64_t from : {int64_t(-7), int64_t(0), int64_t(5), int64_t(999), int64_t(1) << 20, top - 1, top + 1}) {
+    for (int64_t x = 0; x < 2100; x += 7)
+      for (int64_t probe : {x, top - 1, top - 3, (int64_t(1) << 20) + 2}) {
+        if (used.count(probe)) continue;
+        const int64_t r = ids.rank(from, uint32_t(probe));
+        ASSERT_EQ(r, oracle(from, probe)) << from << " " << probe;
+        uint32_t back = 0;
+        ASSERT_TRUE(ids.unrank(from, r, &back)) << from << " " << r;
+        EXPECT_EQ(back, uint32_t(probe)) << from << " " << r;
+      }
+    uint32_t out = 0;
+    EXPECT_FALSE(ids.unrank(from, int64_t(1) << 33, &out));   // more unused ids than exist above
+    EXPECT_FALSE(ids.unrank(from, -(int64_t(1) << 33), &out));
+  }
+  uint32_t out = 0;
+  EXPECT_FALSE(ids.unrank(top + 1, 0, &out));  // rank 0 names the prediction itself: out of range
+  EXPECT_FALSE(ids.unrank(-1, 0, &out));
 }
 
 TEST(FacesCompact, RoundTripsCorpusMeshesInBothOrders) {
@@ -108,8 +148,9 @@ TEST(FacesCompact, RejectsTruncationsFlipsAndAbsurdCounts) {
       std::vector<uint8_t> bad = bytes;
       bad[i] ^= uint8_t(1 << bit);
       ++tried;
-      if (!decode_faces(bad.data(), bad.size(), &out, &err)) ++rejected;
-      else EXPECT_EQ(out.size() % 3, 0u);
+      const bool ok = decode_faces(bad.data(), bad.size(), &out, &err);
+      rejected += !ok;
+      EXPECT_TRUE(!ok || out.size() % 3 == 0);
     }
   EXPECT_GT(rejected * 2, tried);
   std::vector<uint8_t> bad = {2, 0xFF, 0xFF, 0x03, 0, 0, 0, 0, 0};  // 65535 triangles from 5 bytes
@@ -119,6 +160,16 @@ TEST(FacesCompact, RejectsTruncationsFlipsAndAbsurdCounts) {
   EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
   bad = {2, 0x10, 0, 0, 0, 0, 0};  // 16 triangles from an all-zero stream
   EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  // Random streams: any outcome but a crash, and never more triangles than claimed.
+  std::mt19937 rng(3);
+  for (int i = 0; i < 3000; ++i) {
+    std::vector<uint8_t> noise(size_t(6 + rng() % 60));
+    for (auto& b : noise) b = uint8_t(rng());
+    noise[0] = 2;
+    noise[1] = uint8_t(rng() % 100);
+    const bool ok = decode_faces(noise.data(), noise.size(), &out, &err);
+    EXPECT_TRUE(!ok || out.size() == size_t(noise[1]) * 3);
+  }
 }
 
 }  // namespace
