@@ -120,29 +120,6 @@ class Region {
   IdRanks ids_;
 };
 
-// Picks, without side information, the predictor that would have coded the recent new ids
-// cheapest (an exponentially decaying sum of the bit lengths of their ranks).
-class NewIdPredictor {
- public:
-  void predict(uint32_t a, uint32_t b, uint32_t c, int64_t* p) const {
-    p[0] = std::max(a, b);
-    p[1] = std::min(a, b);
-    p[2] = int64_t(a) + int64_t(b) - int64_t(c);
-    p[3] = last_new_;
-  }
-  int best() const { return int(std::min_element(score_, score_ + kPredictors) - score_); }
-  void learn(const int64_t* ranks, int64_t id) {
-    for (int i = 0; i < kPredictors; ++i)
-      score_[i] = score_[i] - (score_[i] >> 7) + 16 * uint32_t(bit_length(magnitude(ranks[i])));
-    last_new_ = id;
-  }
-  void starts_at(int64_t id) { last_new_ = id; }
-
- private:
-  uint32_t score_[kPredictors] = {};
-  int64_t last_new_ = 0;
-};
-
 // The two directions of one traversal: the encoder's Io codes the decision it is given and
 // returns it, the decoder's ignores it and returns what the stream says.
 struct EncodeIo {
@@ -177,15 +154,56 @@ bool accept(Region& region, int64_t id, bool is_new, std::string* error) {
   return true;
 }
 
+// Codes new vertices' ids: each by its rank among the unused ids, seen from a prediction
+// picked without side information (the one whose ranks were shortest, in an exponentially
+// decaying sum of bit lengths), or from the nearer gate id when the gate's ids are far apart.
+class NewIds {
+ public:
+  void starts_at(int64_t id) { last_new_ = id; }
+
+  // The new third corner x of (b, a, x), crossing edge (a, b) of a triangle whose third
+  // corner is c. Decoding, x is ignored and *out receives the id.
+  template <class Io>
+  bool code(Io& io, Models& m, Region& region, uint32_t a, uint32_t b, uint32_t c, uint32_t x, uint32_t* out,
+            std::string* error) {
+    const IdRanks& ids = region.ids();
+    const int64_t p[kPredictors] = {std::max(a, b), std::min(a, b), int64_t(a) + int64_t(b) - int64_t(c), last_new_};
+    int best = int(std::min_element(score_, score_ + kPredictors) - score_);
+    const int gap = gap_class(magnitude(int64_t(a) - int64_t(b)));
+    const int free_gap = gap_class(ids.free_in(int64_t(std::min(a, b)) + 1, int64_t(std::max(a, b)) - 1));
+    // Far apart gate ids: a new vertex is usually near one of them, rarely between.
+    if (best < 2 && free_gap >= kSideGap) {
+      const bool use_min = !Io::kDecoding && magnitude(ids.rank(p[1], x)) < magnitude(ids.rank(p[0], x));
+      best = io.bit(m.far_side[free_gap][b > a], use_min);
+    }
+    const int ctx = best * kGapClasses + gap;
+    const int sign_ctx = best * 9 + 3 * ((b > a) + (b >= a)) + (last_rank_ > 0) + (last_rank_ >= 0);
+    const int64_t rank = io.integer(m.ints, ctx, sign_ctx, Io::kDecoding ? 0 : ids.rank(p[best], x));
+    if (!ids.unrank(p[best], rank, out)) return fail(error, "face vertex rank names no id");
+    int64_t ranks[kPredictors];
+    for (int i = 0; i < kPredictors; ++i) ranks[i] = ids.rank(p[i], *out);
+    if (!accept(region, *out, true, error)) return false;
+    for (int i = 0; i < kPredictors; ++i)
+      score_[i] = score_[i] - (score_[i] >> 7) + 16 * uint32_t(bit_length(magnitude(ranks[i])));
+    last_new_ = *out;
+    last_rank_ = rank;
+    return true;
+  }
+
+ private:
+  uint32_t score_[kPredictors] = {};
+  int64_t last_new_ = 0;
+  int64_t last_rank_ = 0;
+};
+
 // The breadth-first traversal both sides run (format_spec/dcrv.md 6.3). Encoding, `list`
 // holds the T triangles to code; decoding, they are appended to it.
 template <class Io>
 bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* error) {
   Models m;
   Region region;
-  NewIdPredictor predictor;
+  NewIds new_ids;
   int64_t ref = 0;  // the last id coded at a component start
-  int64_t last_rank = 0;
   uint64_t head = 0, n = 0;
   // The encoder's answer for corner c of triangle t (unused when decoding).
   auto truth = [&](uint64_t t, int c) { return Io::kDecoding ? 0u : (*list)[size_t(3 * t) + c]; };
@@ -203,7 +221,7 @@ bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* erro
         const bool is_new = io.bit(m.start_new, !region.seen(x));
         const int64_t id = ref + io.integer(m.ints, is_new ? kCtxStartNew : kCtxStartSeen, kSignOther, int64_t(x) - ref);
         if (!accept(region, id, is_new, error)) return false;
-        if (is_new) predictor.starts_at(id);
+        if (is_new) new_ids.starts_at(id);
         tri[c] = uint32_t(id);
         ref = id;
       }
@@ -227,24 +245,8 @@ bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* erro
         while (i + 1 < k && io.bit(i == 0 ? m.first_index[fa][fb] : m.index[i > 1], at > i)) ++i;
         id = cand[i];
       } else if (io.bit(m.is_new[k > 0], !region.seen(x))) {
-        int64_t p[kPredictors], ranks[kPredictors];
-        predictor.predict(a, b, c, p);
-        int best = predictor.best();
-        const int gap = gap_class(magnitude(int64_t(a) - int64_t(b)));
-        const int free_gap = gap_class(region.ids().free_in(int64_t(std::min(a, b)) + 1, int64_t(std::max(a, b)) - 1));
-        // Far apart gate ids: a new vertex is usually near one of them, rarely between.
-        if (best < 2 && free_gap >= kSideGap) {
-          const bool use_min = !Io::kDecoding && magnitude(region.ids().rank(p[1], x)) < magnitude(region.ids().rank(p[0], x));
-          best = io.bit(m.far_side[free_gap][b > a], use_min);
-        }
-        const int ctx = best * kGapClasses + gap, sign_ctx = best * 9 + 3 * ((b > a) + (b >= a)) + (last_rank > 0) + (last_rank >= 0);
-        const int64_t rank = io.integer(m.ints, ctx, sign_ctx, Io::kDecoding ? 0 : region.ids().rank(p[best], x));
         uint32_t fresh = 0;
-        if (!region.ids().unrank(p[best], rank, &fresh)) return fail(error, "face vertex rank names no id");
-        for (int i = 0; i < kPredictors; ++i) ranks[i] = region.ids().rank(p[i], fresh);
-        if (!accept(region, fresh, true, error)) return false;
-        predictor.learn(ranks, fresh);
-        last_rank = rank;
+        if (!new_ids.code(io, m, region, a, b, c, x, &fresh, error)) return false;
         id = fresh;
       } else {
         id = a + io.integer(m.ints, kCtxFar, kSignOther, int64_t(x) - a);
