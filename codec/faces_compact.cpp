@@ -8,6 +8,7 @@
 #include "codec/error.h"
 #include "codec/id_ranks.h"
 #include "codec/int_coder.h"
+#include "codec/mixed_hash.h"
 #include "codec/range_coder.h"
 
 namespace dcurve {
@@ -71,6 +72,12 @@ class Region {
     ids_.insert(v);
   }
   const IdRanks& ids() const { return ids_; }
+  // Room for about `triangles` triangles of a closed mesh (half as many vertices).
+  void reserve(size_t triangles) {
+    slot_.reserve(triangles / 2 + 3);
+    rings_.reserve(triangles / 2 + 3);
+    edges_.reserve(3 * triangles);
+  }
   // Triangles out around v so far, clamped to kFanClasses - 1.
   int fan(uint32_t v) const { return int(std::min<uint32_t>(ring(v).into.count, kFanClasses - 1)); }
   bool has_edge(uint32_t from, uint32_t to) const { return edges_.count(edge_key(from, to)) != 0; }
@@ -114,9 +121,9 @@ class Region {
   };
   Rings& ring(uint32_t v) { return rings_[slot_.at(v)]; }
   const Rings& ring(uint32_t v) const { return rings_[slot_.at(v)]; }
-  std::unordered_map<uint32_t, uint32_t> slot_;
+  std::unordered_map<uint32_t, uint32_t, MixedHash> slot_;
   std::vector<Rings> rings_;
-  std::unordered_set<uint64_t> edges_;
+  std::unordered_set<uint64_t, MixedHash> edges_;
   IdRanks ids_;
 };
 
@@ -202,6 +209,7 @@ template <class Io>
 bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* error) {
   Models m;
   Region region;
+  region.reserve(size_t(std::min<uint64_t>(T, 1u << 20)));  // T is bounded by the payload size
   NewIds new_ids;
   int64_t ref = 0;  // the last id coded at a component start
   uint64_t head = 0, n = 0;

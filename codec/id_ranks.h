@@ -8,6 +8,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "codec/mixed_hash.h"
+
 namespace dcurve {
 
 class IdRanks {
@@ -34,13 +36,13 @@ class IdRanks {
     uint64_t below(size_t i) const;    // total at indices < i
   };
   Fenwick top_;                                   // per top bucket
-  std::unordered_map<uint32_t, Fenwick> mids_;    // per used top bucket: per mid bucket
+  std::unordered_map<uint32_t, Fenwick, MixedHash> mids_;    // per used top bucket: per mid bucket
   // Per used (top, mid): the ids' bits, 64 per word, and per word the ids in earlier words.
   struct Low {
     uint64_t bits[(1u << kLowBits) / 64] = {};
     uint16_t before[(1u << kLowBits) / 64] = {};
   };
-  std::unordered_map<uint32_t, Low> lows_;
+  std::unordered_map<uint32_t, Low, MixedHash> lows_;
   // Ids in [0, y) given count_below(first) for some first <= y: the binary searches of
   // unrank keep one end fixed.
   uint64_t free_from(int64_t first, uint64_t used_before_first, int64_t last) const;
