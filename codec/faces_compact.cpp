@@ -209,7 +209,7 @@ template <class Io>
 bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* error) {
   Models m;
   Region region;
-  region.reserve(size_t(std::min<uint64_t>(T, 1u << 20)));  // T is bounded by the payload size
+  region.reserve(size_t(std::min<uint64_t>(T, 1u << 16)));  // a few MB at most before any decoding
   NewIds new_ids;
   int64_t ref = 0;  // the last id coded at a component start
   uint64_t head = 0, n = 0;
