@@ -12,7 +12,7 @@ namespace dcurve::cli {
 namespace {
 
 const char* mode_name(FitMode m) { return m == FitMode::Displacement ? "displacement" : "absolute"; }
-const char* layout_name(int l) { return l == 0 ? "exact" : l == 1 ? "traversal" : "none"; }
+const char* layout_name(int l) { return l == 0 ? "exact" : l == 1 ? "traversal" : l == 2 ? "compact" : "none"; }
 
 // Counts of motions per basis (zero, pde8, pde32) and of Pde8 motions per case.
 struct BasisUse {

@@ -63,19 +63,25 @@ std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, boo
   return stored;
 }
 
-std::vector<uint8_t> face_bytes(const Model& m, const WriteOptions& options) {
-  std::vector<uint8_t> exact = encode_faces(m.faces, FaceOrder::Exact);
-  if (options.face_layout == WriteOptions::FaceLayout::Exact) return exact;
-  // Traversal may reorder triangles; other parts of the file (the residual coder's
-  // neighbours) were built on model.faces, so it is used only when it gives them back as is.
-  std::vector<uint8_t> traversal = encode_faces(m.faces, FaceOrder::Traversal);
-  std::vector<uint32_t> back;
-  if (!decode_faces(traversal.data(), traversal.size(), &back, nullptr) || back != m.faces) return exact;
+std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
+  using Layout = WriteOptions::FaceLayout;
+  std::vector<uint8_t> best = encode_faces(faces, FaceOrder::Exact);
+  if (options.face_layout == Layout::Exact) return best;
   bool unused;
-  return stored_form(traversal, options.zstd_level, &unused).size() <
-                 stored_form(exact, options.zstd_level, &unused).size()
-             ? traversal
-             : exact;
+  auto stored_size = [&](const std::vector<uint8_t>& raw) { return stored_form(raw, options.zstd_level, &unused).size(); };
+  auto consider = [&](std::vector<uint8_t> raw, Layout layout) {
+    if (options.face_layout == layout || (options.face_layout == Layout::Smallest && stored_size(raw) < stored_size(best)))
+      best = std::move(raw);
+  };
+  // Compact reproduces any list exactly (encode_faces falls back to Exact beyond its bound).
+  consider(encode_faces(faces, FaceOrder::Compact), Layout::Compact);
+  // Traversal may reorder triangles, and other parts of the file (the residual coder's
+  // neighbours) were built on model.faces: a candidate only when it gives them back as is.
+  std::vector<uint8_t> traversal = encode_faces(faces, FaceOrder::Traversal);
+  std::vector<uint32_t> back;
+  if (decode_faces(traversal.data(), traversal.size(), &back, nullptr) && back == faces)
+    consider(std::move(traversal), Layout::Traversal);
+  return best;
 }
 
 void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
@@ -240,7 +246,7 @@ bool parse_residual(ByteReader& r, Model* m) {
 std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options) {
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;
   sections.emplace_back(kMeta, meta_bytes(model));
-  if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model, options));
+  if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model.faces, options));
   sections.emplace_back(kCurves, curve_bytes(model));
   sections.emplace_back(kSegments, segment_bytes(model));
   if (model.residual.step > 0) sections.emplace_back(kResidual, residual_bytes(model));
@@ -282,6 +288,11 @@ int quantize_coefficients(CurveMotion* m, int exponent) {
   for (float& c : m->coeffs)
     c = std::ldexp(float(std::round(std::ldexp(double(c), -exponent))), exponent);
   return exponent;
+}
+
+uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
+  bool unused;
+  return stored_form(face_bytes(faces, options), options.zstd_level, &unused).size();
 }
 
 uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections) {

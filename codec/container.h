@@ -19,10 +19,12 @@ struct WriteOptions {
   // predicts from whatever neighbours the file carries, so a model written without faces
   // must have had its residual coded with model.faces empty (encode_animation does this).
   bool connectivity = true;
-  // A reader always gets model.faces back exactly. Smallest uses the FACE Traversal layout
-  // when model.faces is already in traversal_order (codec/faces.h) and that codes smaller;
-  // Exact always uses the Exact layout.
-  enum class FaceLayout { Smallest, Exact };
+  // A reader always gets model.faces back exactly. Smallest picks whichever FACE layout
+  // stores smallest: Exact, Compact, or Traversal when model.faces is already in
+  // traversal_order (codec/faces.h). Each other value forces that layout when it can hold
+  // model.faces (Traversal: a list in traversal order; Compact: within its triangle-per-byte
+  // bound) and falls back to Exact otherwise: for test vectors and measurements.
+  enum class FaceLayout { Smallest, Exact, Traversal, Compact };
   FaceLayout face_layout = FaceLayout::Smallest;
   int zstd_level = 19;       // 1..22
 };
@@ -35,7 +37,7 @@ struct SectionInfo {
   uint64_t offset = 0;        // file offset of the section header
   uint64_t stored_bytes = 0;  // bytes in the file (after the 28-byte section header)
   uint64_t raw_bytes = 0;     // bytes after decompression
-  int face_layout = -1;       // FACE only: 0 exact, 1 traversal (codec/faces.h)
+  int face_layout = -1;       // FACE only: 0 exact, 1 traversal, 2 compact (codec/faces.h)
 };
 
 // The fixed 20-byte file header.
@@ -52,6 +54,10 @@ constexpr size_t kSectionHeaderBytes = 28;
 // Bytes the FACE section takes in the file, its section header included (0 without one):
 // what dropping connectivity would save.
 uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections);
+
+// Payload bytes the FACE section of write_container(model, options) would store for
+// model.faces = faces (section header not included): lets an encoder compare face orders.
+uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options = {});
 
 bool peek_header(const uint8_t* data, size_t size, ContainerHeader* header);
 

@@ -1,9 +1,9 @@
 #include "codec/faces.h"
 
 #include <algorithm>
-#include <unordered_map>
 
 #include "codec/bytes.h"
+#include "codec/faces_compact.h"
 
 namespace dcurve {
 namespace {
@@ -143,11 +143,24 @@ bool decode_exact(ByteReader& r, std::vector<uint32_t>* faces, std::string* erro
 // with three explicit ids. Processing stops the moment all triangles are out.
 std::vector<uint8_t> encode_traversal(const std::vector<uint32_t>& faces) {
   const size_t T = faces.size() / 3;
-  std::unordered_map<uint64_t, uint32_t> by_edge;  // directed edge -> triangle * 3 + corner
+  // Every corner as (directed edge it starts, third corner, triangle * 3 + corner), sorted:
+  // where several triangles share a directed edge (non-manifold or repeated triangles), the
+  // one with the smallest third corner follows, a choice that does not depend on the list
+  // order and so makes traversal_order a fixed point.
+  struct Corner {
+    uint64_t edge;
+    uint32_t third, at;
+    bool operator<(const Corner& o) const {
+      return edge != o.edge ? edge < o.edge : third != o.third ? third < o.third : at < o.at;
+    }
+  };
+  std::vector<Corner> by_edge;
   by_edge.reserve(faces.size());
   for (size_t t = 0; t < T; ++t)
     for (int c = 0; c < 3; ++c)
-      by_edge.emplace(uint64_t(faces[3 * t + c]) << 32 | faces[3 * t + (c + 1) % 3], uint32_t(3 * t + c));
+      by_edge.push_back({uint64_t(faces[3 * t + c]) << 32 | faces[3 * t + (c + 1) % 3],
+                         faces[3 * t + (c + 2) % 3], uint32_t(3 * t + c)});
+  std::sort(by_edge.begin(), by_edge.end());
   std::vector<uint8_t> done(T, 0), symbols;
   std::vector<uint32_t> out;
   out.reserve(faces.size());
@@ -167,14 +180,15 @@ std::vector<uint8_t> encode_traversal(const std::vector<uint32_t>& faces) {
     }
     for (int e = 0; e < 3 && out.size() < faces.size(); ++e) {
       const uint32_t a = out[3 * head + e], b = out[3 * head + (e + 1) % 3];
-      auto it = by_edge.find(uint64_t(b) << 32 | a);
-      const uint32_t t = it == by_edge.end() ? 0 : it->second / 3;
-      if (it == by_edge.end() || done[t]) {
+      const uint64_t key = uint64_t(b) << 32 | a;
+      auto it = std::lower_bound(by_edge.begin(), by_edge.end(), Corner{key, 0, 0});
+      while (it != by_edge.end() && it->edge == key && done[it->at / 3]) ++it;
+      if (it == by_edge.end() || it->edge != key) {
         symbols.push_back(0);
         continue;
       }
-      done[t] = 1;
-      const uint32_t x = faces[3 * t + (it->second % 3 + 2) % 3];
+      done[it->at / 3] = 1;
+      const uint32_t x = it->third;
       symbols.push_back(1);
       ids.varint(zigzag_encode(int64_t(x) - int64_t(a)));
       out.insert(out.end(), {b, a, x});
@@ -239,7 +253,12 @@ bool decode_traversal(ByteReader& r, std::vector<uint32_t>* faces, std::string* 
 }  // namespace
 
 std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder order) {
-  return order == FaceOrder::Exact ? encode_exact(faces) : encode_traversal(faces);
+  if (order == FaceOrder::Traversal) return encode_traversal(faces);
+  if (order == FaceOrder::Compact) {
+    std::vector<uint8_t> out{uint8_t(FaceOrder::Compact)};
+    if (encode_compact_faces(faces, &out)) return out;
+  }
+  return encode_exact(faces);
 }
 
 std::vector<uint32_t> traversal_order(const std::vector<uint32_t>& faces) {
@@ -257,6 +276,11 @@ bool decode_faces(const uint8_t* bytes, size_t size, std::vector<uint32_t>* face
   if (!r.ok) why = "face section is empty";
   else if (layout == uint8_t(FaceOrder::Exact)) ok = decode_exact(r, faces, &why);
   else if (layout == uint8_t(FaceOrder::Traversal)) ok = decode_traversal(r, faces, &why);
+  else if (layout == uint8_t(FaceOrder::Compact)) {
+    // The range-coded stream runs to the end of the payload.
+    ok = decode_compact_faces(bytes + r.position(), r.remaining(), faces, &why);
+    r.take(r.remaining());
+  }
   else why = "unknown face layout " + std::to_string(layout);
   if (ok && r.remaining() != 0) ok = false, why = "face section has trailing bytes";
   if (!ok) {

@@ -46,6 +46,10 @@ std::vector<Vector> recipes() {
   sheet.faces = traversal_order(sheet.faces);
   sheet.residual.payload = encode_residuals(sheet, testing::grid(sheet.meta.vertex_count, 4));
   v.push_back({"sheet_traversal_faces", sheet, {}});
+  v.back().options.face_layout = Layout::Traversal;
+  // The same faces in the Compact layout: also the fuzzer's seed for that coder.
+  v.push_back({"sheet_compact_faces", sheet, {}});
+  v.back().options.face_layout = Layout::Compact;
 
   Model model_only = small_model(5, {0, 4});
   add_pde_motions(&model_only, 3);
@@ -191,6 +195,8 @@ TEST(InfoCommand, DescribesTestVectorsAndRefusesDamage) {
   out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "sheet_traversal_faces.dcrv", &status);
   EXPECT_NE(out.find("\"face_layout\":\"traversal\""), std::string::npos) << out;
   EXPECT_NE(out.find("\"faces\":72"), std::string::npos) << out;
+  out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "sheet_compact_faces.dcrv", &status);
+  EXPECT_NE(out.find("\"face_layout\":\"compact\""), std::string::npos) << out;
 
   std::vector<uint8_t> bytes = read_bytes(dir() + "frames_only.dcrv");
   bytes[bytes.size() / 2] ^= 0x10;

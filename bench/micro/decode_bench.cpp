@@ -13,6 +13,7 @@
 #include <meshoptimizer.h>
 #endif
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -23,6 +24,7 @@
 #include "codec/bytes.h"
 #include "codec/container.h"
 #include "codec/faces.h"
+#include "bench/draco_frame.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"
 #include "encoder/io/frames.h"
@@ -223,14 +225,18 @@ size_t zstd_size(const std::vector<uint8_t>& raw) {
   return ZSTD_compress(out.data(), out.size(), raw.data(), raw.size(), 19);
 }
 
+size_t stored_size(const std::vector<uint8_t>& raw) { return std::min(raw.size(), zstd_size(raw)); }
+
 // Connectivity options, bytes per triangle after zstd -19 (the container's compression).
 void print_face_sizes() {
   std::printf("FACE coder, bytes per triangle (zstd -19), corpus-ext frame 0:\n");
-  std::printf("(exact: FACE layout 0 on the input order; trav: layout 1; exact/trav-order: layout 0 on the\n"
-              " traversal order; meshopt: meshopt_encodeIndexBuffer, which rotates corners; draco-eb: Draco\n"
-              " edgebreaker with all positions at the origin, which also renumbers vertices)\n");
-  std::printf("%-18s %8s %9s %11s %11s %10s %17s %13s %9s\n", "sequence", "tris", "raw+zstd", "delta+zstd",
-              "exact+zstd", "trav+zstd", "exact/trav-order", "meshopt+zstd", "draco-eb");
+  std::printf("(exact: FACE layout 0 on the input order; trav: layout 1; compact: layout 2 on the traversal\n"
+              " order; exact/trav-order: layout 0 on the traversal order; meshopt: meshopt_encodeIndexBuffer,\n"
+              " which rotates corners; draco-eb: Draco edgebreaker with all positions at the origin, which\n"
+              " also renumbers vertices)\n");
+  std::printf("%-18s %8s %9s %11s %11s %10s %8s %17s %13s %9s\n", "sequence", "tris", "raw+zstd", "delta+zstd",
+              "exact+zstd", "trav+zstd", "compact", "exact/trav-order", "meshopt+zstd", "draco-eb");
+  std::string bytes_table;
   for (const char* seq : {"horse-gallop", "chicken-crossing", "elastic-cow", "cloth-sphere", "crane"}) {
     Animation a;
     std::vector<float> xyz;
@@ -254,12 +260,27 @@ void print_face_sizes() {
 #endif
     // Draco edgebreaker with every position at the origin: what is left is connectivity.
     std::vector<float> zeros(xyz.size(), 0.f);
-    const double draco = double(draco_encode(a, zeros).size()) / T;
-    std::printf("%-18s %8.0f %9.3f %11.3f %11.3f %10.3f %17.3f %13.3f %9.3f\n", seq, T, zstd_size(raw) / T,
-                zstd_size(delta.data()) / T, zstd_size(encode_faces(a.faces, FaceOrder::Exact)) / T,
-                zstd_size(encode_faces(a.faces, FaceOrder::Traversal)) / T,
-                zstd_size(encode_faces(traversal_order(a.faces), FaceOrder::Exact)) / T, meshopt, draco);
+    const size_t draco = draco_encode(a, zeros).size();
+    const std::vector<uint32_t> trav = traversal_order(a.faces);
+    const size_t exact = stored_size(encode_faces(a.faces, FaceOrder::Exact));
+    const size_t traversal = stored_size(encode_faces(trav, FaceOrder::Traversal));
+    const size_t compact = stored_size(encode_faces(trav, FaceOrder::Compact));
+    const size_t compact_input = stored_size(encode_faces(a.faces, FaceOrder::Compact));
+    std::printf("%-18s %8.0f %9.3f %11.3f %11.3f %10.3f %8.3f %17.3f %13.3f %9.3f\n", seq, T, zstd_size(raw) / T,
+                zstd_size(delta.data()) / T, exact / T, traversal / T, compact / T,
+                zstd_size(encode_faces(trav, FaceOrder::Exact)) / T, meshopt, draco / T);
+    char line[256];
+    // What `dcurve bench` charges for connectivity: Draco at compression level 10.
+    bench::DracoFrameCodec level10;
+    const bool have_level10 = level10.init(a.vertex_count, a.faces, &err);
+    std::snprintf(line, sizeof line, "| %s | %.0f | %zu | %zu | %zu | %zu | %zu | %lld |\n", seq, T, exact, traversal,
+                  compact, compact_input, draco, have_level10 ? (long long)level10.connectivity_bytes() : -1LL);
+    bytes_table += line;
   }
+  std::printf("\nFACE payload bytes (stored: zstd -19 when smaller), Markdown:\n"
+              "| sequence | triangles | layout 0, input order | layout 1 | layout 2, traversal order |"
+              " layout 2, input order | Draco, default speed | Draco, level 10 (bench conn.B) |\n|---|---|---|---|---|---|---|---|\n%s",
+              bytes_table.c_str());
 }
 
 }  // namespace
