@@ -124,12 +124,15 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     return true;
   };
   const uint32_t available = uint32_t(pca.weights.size());
+  std::vector<uint32_t> counts;
+  if (forced) counts.push_back(std::min(uint32_t(options.components), available));
+  for (uint32_t K : kComponentCounts)
+    if (!forced && K <= available) counts.push_back(K);
   uint32_t best_count = 0;
   double best_net = -HUGE_VAL;
   int worse = 0;
-  for (uint32_t K : kComponentCounts) {
-    if (forced && K != uint32_t(options.components)) continue;
-    if (K > available || worse >= kPatience) break;
+  for (uint32_t K : counts) {
+    if (worse >= kPatience) break;
     bool screened = false;
     if (!try_candidate(K, kFirstStep, &screened)) return false;
     if (!screened) break;  // larger counts cost more still
@@ -140,11 +143,6 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     } else {
       ++worse;
     }
-  }
-  if (forced && best_count == 0 && uint32_t(options.components) > available) {
-    bool screened = false;
-    if (!try_candidate(available, kFirstStep, &screened)) return false;
-    if (screened) best_count = available;
   }
   for (double step : kOtherSteps) {
     bool screened = false;
