@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "codec/error.h"
 #include "codec/low_rank.h"
@@ -20,6 +21,8 @@ namespace {
 constexpr uint32_t kComponentCounts[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
 constexpr double kFirstStep = 0.15;
 constexpr double kOtherSteps[] = {0.1, 0.25, 0.4};
+// Frames the screening estimate samples (every ceil(F / this)-th frame).
+constexpr uint32_t kScreenFrames = 24;
 // Counts past the best one screened before giving up on larger ones.
 constexpr int kPatience = 2;
 // Above this many multiply-adds the F x F Gram matrix is not worth building automatically.
@@ -49,21 +52,49 @@ std::vector<double> frame_bits(const Model& m, const std::vector<int32_t>& q, co
 struct Candidate {
   LowRankModel model;
   double basis_step = 0;
-  double net_bytes = 0;  // estimated saving: residual bytes saved minus the section's raw bytes
+  double saved_bytes = 0;    // estimated residual bytes saved
+  double section_bytes = 0;  // the LRNK section's raw bytes
+  double net_bytes = 0;      // the difference
 };
 
-// Residual plan and payload of `trial` with its low-rank prediction; plan_options restrict
-// the search (screening) or not (full trial).
+// Every `stride`-th frame of an encode: the screening estimate's sample. With the Model
+// predictor alone, frames are coded independently, so a sample estimates the whole.
+struct FrameSample {
+  std::vector<uint32_t> frames;  // indices into the full animation
+  Model model;                   // counts, faces, curves and grid for frames.size() frames
+  std::vector<std::vector<float>> input;
+  std::vector<int32_t> rounded;
+};
+
+FrameSample sample_frames(const Model& model, const std::vector<std::vector<float>>& frames,
+                          const std::vector<int32_t>& rounded, uint32_t stride) {
+  const size_t n = size_t(model.meta.vertex_count) * 3;
+  FrameSample s;
+  s.model.meta = model.meta;
+  s.model.faces = model.faces;
+  s.model.curves = model.curves;
+  s.model.residual.step = model.residual.step;
+  std::copy(model.residual.origin, model.residual.origin + 3, s.model.residual.origin);
+  for (uint32_t f = 0; f < model.meta.frame_count; f += stride) {
+    s.frames.push_back(f);
+    s.input.push_back(frames[f]);
+    s.rounded.insert(s.rounded.end(), rounded.begin() + std::ptrdiff_t(f * n),
+                     rounded.begin() + std::ptrdiff_t((f + 1) * n));
+  }
+  s.model.meta.frame_count = uint32_t(s.frames.size());
+  return s;
+}
+
+// Residual plan and payload of `trial` with its low-rank prediction (full trial).
 bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>& frames,
                             const std::vector<int32_t>& rounded, double snap_distance,
-                            const ResidualPlanOptions& plan_options, std::vector<int32_t>* q, PredictorPlan* plan,
-                            std::vector<int32_t>* prediction, std::string* error) {
-  if (!model_grid_prediction(*trial, UINT64_MAX, prediction, error)) return false;
+                            const ResidualPlanOptions& plan_options, std::string* error) {
+  std::vector<int32_t> prediction, q = rounded;
+  if (!model_grid_prediction(*trial, UINT64_MAX, &prediction, error)) return false;
   ResidualOptions ro;
-  ro.model_prediction = prediction;
-  *q = rounded;
-  *plan = choose_plan_and_grid(*trial, frames, snap_distance, q, ro, plan_options);
-  trial->residual.payload = encode_residuals(*trial, *q, plan, ro);
+  ro.model_prediction = &prediction;
+  const PredictorPlan plan = choose_plan_and_grid(*trial, frames, snap_distance, &q, ro, plan_options);
+  trial->residual.payload = encode_residuals(*trial, q, &plan, ro);
   if (trial->residual.payload.empty()) return fail(error, "internal error: the low-rank residual plan is invalid");
   return true;
 }
@@ -97,28 +128,35 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
 
   const GridComponents pca = grid_components(rounded, F, n, std::min<uint32_t>(kMaxLowRankComponents, F - 1));
   if (pca.weights.empty()) return true;
-  // Screening: the Model predictor alone, time order, against today's per-frame bits. A
-  // model whose section alone outweighs today's residual payload cannot pay and is skipped.
+  // Screening: the Model predictor alone, time order, on a sample of the frames, against
+  // today's bits of the same frames. A model whose section alone outweighs today's residual
+  // payload cannot pay and is skipped.
   ResidualPlanOptions screen;
   screen.kinds = 1u << int(PredictorKind::Model);
   screen.gop_sizes = {1};
+  // An odd stride: hierarchical coding orders make every power-of-two-th frame dearer.
+  const FrameSample sample = sample_frames(*model, frames, rounded, ((F + kScreenFrames - 1) / kScreenFrames) | 1);
+  const double sample_scale = double(F) / double(sample.frames.size());
   std::vector<Candidate> candidates;
-  std::vector<int32_t> q, prediction;
-  PredictorPlan plan;
   auto try_candidate = [&](uint32_t K, double step, bool* screened) {
     *screened = false;
     Model trial = *model;
     if (!quantize_low_rank(pca, K, step, mean_shift_for(step), &trial)) return true;
     const double section = double(low_rank_bytes(trial).size());
     if (!forced && section >= double(model->residual.payload.size())) return true;
-    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, screen, &q, &plan, &prediction, error))
-      return false;
+    std::vector<int32_t> prediction, sampled, q = sample.rounded;
+    if (!model_grid_prediction(trial, UINT64_MAX, &prediction, error)) return false;
+    for (uint32_t f : sample.frames)
+      sampled.insert(sampled.end(), prediction.begin() + std::ptrdiff_t(f * n),
+                     prediction.begin() + std::ptrdiff_t((f + 1) * n));
     ResidualOptions ro;
-    ro.model_prediction = &prediction;
-    const std::vector<double> bits = frame_bits(trial, q, plan, ro);
+    ro.model_prediction = &sampled;
+    const PredictorPlan plan = choose_plan_and_grid(sample.model, sample.input, snap_distance, &q, ro, screen);
+    const std::vector<double> bits = frame_bits(sample.model, q, plan, ro);
     double saved = 0;
-    for (uint32_t f = 0; f < F; ++f) saved += std::max(0.0, bits_without[f] - bits[f]) / 8;
-    candidates.push_back({std::move(trial.low_rank), step, saved - section});
+    for (size_t j = 0; j < sample.frames.size(); ++j)
+      saved += std::max(0.0, bits_without[sample.frames[j]] - bits[j]) / 8 * sample_scale;
+    candidates.push_back({std::move(trial.low_rank), step, saved, section, saved - section});
     ++rep.screened;
     *screened = true;
     return true;
@@ -144,9 +182,15 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
       ++worse;
     }
   }
+  // Other steps for the best count, unless even the coarsest could not pay: a coarser basis
+  // saves less, and its section shrinks by about the step ratio at most.
+  const auto best_it = std::max_element(candidates.begin(), candidates.end(),
+                                        [](const Candidate& a, const Candidate& b) { return a.net_bytes < b.net_bytes; });
+  const bool refine = best_it != candidates.end() &&
+                      best_it->saved_bytes > kFirstStep / kOtherSteps[std::size(kOtherSteps) - 1] * best_it->section_bytes;
   for (double step : kOtherSteps) {
     bool screened = false;
-    if (best_count > 0 && !try_candidate(best_count, step, &screened)) return false;
+    if (refine && !try_candidate(best_count, step, &screened)) return false;
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.net_bytes > b.net_bytes; });
@@ -162,7 +206,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     if (rep.trials >= options.max_trials || (!forced && c.net_bytes <= 0)) break;
     Model trial = *model;
     trial.low_rank = c.model;
-    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, &q, &plan, &prediction, error))
+    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, error))
       return false;
     ++rep.trials;
     const uint64_t bytes = write_container(trial, write_options).size();
