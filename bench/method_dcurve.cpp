@@ -29,6 +29,9 @@ bool bench_dcurve(const BenchContext& ctx, MethodResult* r, std::string* error) 
   set_measures(ctx, decoded, file.size(), rep.connectivity_bytes, r);
   r->decode_vertices_per_second = decode_rate(ctx, decode_all);
   r->settings = "curves=" + std::to_string(rep.curves.curves) + " segments=" + std::to_string(rep.segments) +
+                (rep.low_rank_components ? " low_rank=" + std::to_string(rep.low_rank_components) + " (" +
+                                               std::to_string(rep.low_rank_bytes) + " B)"
+                                         : std::string(" low_rank=off")) +
                 " own connectivity section";
   Model model;
   std::string ignored;  // the decoder accepted the file above; a failure here only drops the note

@@ -17,7 +17,7 @@ Action add_encode(CLI::App& app) {
     double tolerance = 1e-3;
     bool json = false, no_connectivity = false, exact_faces = false;
     int threads = 0;
-    std::string model = "none";
+    std::string model = "none", low_rank = "auto";
     uint32_t segment_frames = 8, curve_points = 64;
   };
   auto o = std::make_shared<Opts>();
@@ -31,6 +31,11 @@ Action add_encode(CLI::App& app) {
                  "Motion model beside the exact frames: none (in-betweens blend linearly), pde8 or pde32 "
                  "(in-betweens follow the fitted PDE curves)")
       ->check(CLI::IsMember({"none", "pde8", "pde32"}))
+      ->capture_default_str();
+  app.add_option("--low-rank", o->low_rank,
+                 "Low-rank (PCA) model of the frames that the residual layer may predict from: auto (kept "
+                 "only when the file gets smaller), off, or a component count 1..64 (always used)")
+      ->check(CLI::IsMember({"auto", "off"}) | CLI::Range(1, 64))
       ->capture_default_str();
   app.add_option("--segment-frames", o->segment_frames, "PDE model time segment length, frames")
       ->check(CLI::Range(1, 100000))
@@ -58,6 +63,7 @@ Action add_encode(CLI::App& app) {
     eo.exact_face_order = o->exact_faces;
     eo.threads = o->threads;
     eo.model = o->model == "pde8" ? ModelChoice::Pde8 : o->model == "pde32" ? ModelChoice::Pde32 : ModelChoice::None;
+    eo.low_rank = o->low_rank == "auto" ? -1 : o->low_rank == "off" ? 0 : std::stoi(o->low_rank);
     eo.segment_frames = o->segment_frames;
     eo.curve_points = o->curve_points;
     eo.progress = progress_bar("encode");
@@ -87,6 +93,8 @@ Action add_encode(CLI::App& app) {
                         {"encode_seconds", rep.encode_seconds},
                         {"model", o->model},
                         {"model_bytes", rep.model_bytes},
+                        {"low_rank_components", rep.low_rank_components},
+                        {"low_rank_bytes", rep.low_rank_bytes},
                         {"curve_fallback", rep.curve_fallback}};
     j.update(curve_report_json(rep.curves));
     if (o->json) {

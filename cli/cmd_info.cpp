@@ -95,6 +95,11 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
             {"origin", {m.residual.origin[0], m.residual.origin[1], m.residual.origin[2]}},
             {"payload_bytes", m.residual.payload.size()},
             {"predictors", predictors}}},
+          {"low_rank",
+           {{"components", m.low_rank.components},
+            {"shift", m.low_rank.shift},
+            {"mean_shift", m.low_rank.mean_shift},
+            {"basis_payload_bytes", m.low_rank.basis_payload.size()}}},
           {"sections", js}};
 }
 
@@ -133,6 +138,11 @@ void print_text(const nlohmann::json& j) {
   {
     std::printf("  residual layer: grid step %.6g, %llu payload bytes\n", r["grid_step"].get<double>(),
                 (unsigned long long)r["payload_bytes"].get<uint64_t>());
+    const auto& lr = j["low_rank"];
+    if (lr["components"].get<uint32_t>() > 0)
+      std::printf("  low-rank model (Model predictor): %u components, shift %u, mean shift %u, basis %llu bytes\n",
+                  lr["components"].get<uint32_t>(), lr["shift"].get<uint32_t>(), lr["mean_shift"].get<uint32_t>(),
+                  (unsigned long long)lr["basis_payload_bytes"].get<uint64_t>());
     if (!r["predictors"].is_null())
       std::printf("  predictors per frame and axis: %s; spatial corrections: %s; %s coding order\n",
                   r["predictors"]["kind"].dump().c_str(), r["predictors"]["spatial"].dump().c_str(),

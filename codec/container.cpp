@@ -11,6 +11,7 @@
 #include "codec/crc32.h"
 #include "codec/error.h"
 #include "codec/faces.h"
+#include "codec/low_rank.h"
 #include "codec/validate.h"
 
 namespace dcurve {
@@ -52,6 +53,7 @@ const uint32_t kMeta = fourcc("META");
 const uint32_t kFaces = fourcc("FACE");
 const uint32_t kCurves = fourcc("CURV");
 const uint32_t kSegments = fourcc("SEGS");
+const uint32_t kLowRank = fourcc("LRNK");
 const uint32_t kResidual = fourcc("RESI");
 
 // The bytes a section stores: zstd when that is smaller, else the raw bytes.
@@ -249,6 +251,7 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model.faces, options));
   sections.emplace_back(kCurves, curve_bytes(model));
   sections.emplace_back(kSegments, segment_bytes(model));
+  if (model.low_rank.components > 0) sections.emplace_back(kLowRank, low_rank_bytes(model));
   if (model.residual.step > 0) sections.emplace_back(kResidual, residual_bytes(model));
 
   ByteWriter out;
@@ -320,8 +323,9 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
   if (file_flags & kFileRequiredFlagsMask) return fail(error, "file requires features this decoder does not know");
   if (uint64_t(count) * kSectionHeaderBytes > r.remaining()) return fail(error, "section count exceeds file size");
 
-  bool seen[5] = {false, false, false, false, false};
-  const uint32_t order[5] = {kMeta, kFaces, kCurves, kSegments, kResidual};
+  constexpr int kKnown = 6;
+  bool seen[kKnown] = {false, false, false, false, false, false};
+  const uint32_t order[kKnown] = {kMeta, kFaces, kCurves, kSegments, kLowRank, kResidual};
   std::vector<uint8_t> raw;
   for (uint32_t i = 0; i < count; ++i) {
     const size_t header_at = r.position();
@@ -343,13 +347,13 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
       infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), header_at, stored, raw_size, -1});
 
     int known = -1;
-    for (int k = 0; k < 5; ++k) if (order[k] == tag) known = k;
+    for (int k = 0; k < kKnown; ++k) if (order[k] == tag) known = k;
     if (known < 0) {
       if (flags & kSectionRequired) return fail(error, "unknown required section " + name);
       continue;  // unknown optional sections are skipped: room to grow
     }
     if (seen[known]) return fail(error, "duplicate section " + name);
-    for (int k = known + 1; k < 5; ++k)
+    for (int k = known + 1; k < kKnown; ++k)
       if (seen[k]) return fail(error, "section " + name + " out of order");
     seen[known] = true;
 
@@ -375,6 +379,7 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     }
     else if (tag == kCurves) ok = parse_curves(s, model);
     else if (tag == kSegments) ok = parse_segments(s, model);
+    else if (tag == kLowRank) ok = seen[0] && parse_low_rank(s, model);
     else if (tag == kResidual) ok = parse_residual(s, model);
     if (!ok || s.remaining() != 0) return fail(error, "section " + name + " is malformed");
   }

@@ -70,12 +70,25 @@ struct ResidualLayer {
   std::vector<uint8_t> payload;      // the coded residual stream (format owned by codec/residual.h)
 };
 
+// A low-rank model of the residual grid (LRNK section, format_spec/dcrv.md section 17): the
+// Model predictor of frame f is, per coordinate i = v * 3 + axis, in grid units,
+//   round_shift(mean[i] * 2^(shift - mean_shift) + sum_k coeffs[f * K + k] * basis[k][i], shift).
+// The mean and basis are stored as K + 1 pseudo-frames coded by the residual coder.
+struct LowRankModel {
+  uint32_t components = 0;   // K, 0 (no low-rank model) or 1..kMaxLowRankComponents
+  uint32_t shift = 0;        // S, 0..kMaxLowRankShift
+  uint32_t mean_shift = 0;   // the mean is stored in units of 2^-mean_shift grid steps, <= shift
+  std::vector<int32_t> coeffs;         // frame_count * K, frame-major, |c| <= kMaxLowRankCoeff
+  std::vector<uint8_t> basis_payload;  // residual-layer payload of the K + 1 pseudo-frames
+};
+
 struct Model {
   Metadata meta;
   std::vector<uint32_t> faces;  // 3 vertex ids per triangle; empty when connectivity is omitted
   Curves curves;
   std::vector<Segment> segments;
   ResidualLayer residual;
+  LowRankModel low_rank;
 };
 
 }  // namespace dcurve

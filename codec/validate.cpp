@@ -3,6 +3,7 @@
 #include "codec/basis.h"
 #include "codec/container.h"
 #include "codec/error.h"
+#include "codec/low_rank.h"
 
 #include <algorithm>
 #include <cmath>
@@ -77,6 +78,22 @@ bool validate_model(const Model& m, std::string* error) {
   }
   if (!m.segments.empty() && m.segments.back().last_frame != (F > 1 ? F - 1 : 0))
     return fail(error, "time segments do not reach the last frame");
+
+  const LowRankModel& lr = m.low_rank;
+  if (lr.components > 0) {
+    if (!has_residual) return fail(error, "low-rank model without a residual layer");
+    for (const Segment& s : m.segments)
+      for (const CurveMotion& cm : s.motion)
+        if (cm.basis != Basis::Zero) return fail(error, "file has both a low-rank model and PDE motions");
+    if (lr.components > kMaxLowRankComponents || lr.shift > kMaxLowRankShift || lr.mean_shift > lr.shift ||
+        lr.coeffs.size() != size_t(F) * lr.components)
+      return fail(error, "low-rank model fields out of range");
+    for (int32_t c : lr.coeffs)
+      if (c < -kMaxLowRankCoeff || c > kMaxLowRankCoeff) return fail(error, "low-rank coefficient out of range");
+    const uint64_t values = (uint64_t(lr.components) + 1) * V * 3;
+    if (values > std::max<uint64_t>(kMaxValuesFloor, kMaxValuesPerPayloadByte * lr.basis_payload.size()))
+      return fail(error, "vertex count and rank are implausible for the low-rank basis size");
+  }
 
   if (has_residual) {
     if (!finite_positive(m.residual.step)) return fail(error, "residual grid step is not a positive number");

@@ -46,7 +46,7 @@ std::unique_ptr<Decoder> Decoder::open_memory(const void* data, size_t size, std
     // Files with a motion model may predict frames from it: its grid values come first.
     std::vector<int32_t> prediction;
     ResidualOptions options;
-    if (has_motion_model(m)) {
+    if (has_model_prediction(m)) {
       if (!model_grid_prediction(m, budget, &prediction, error)) return nullptr;
       options.model_prediction = &prediction;
     }

@@ -14,6 +14,7 @@
 #include "encoder/curves/extract.h"
 #include "encoder/curves/report.h"
 #include "encoder/rate/grid.h"
+#include "encoder/rate/low_rank_choice.h"
 #include "encoder/rate/motion_model.h"
 #include "encoder/rate/residual_plan.h"
 
@@ -77,6 +78,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (!(opt.tolerance > 0 && opt.tolerance <= 0.5)) return fail(error, "tolerance must be in (0, 0.5]");
   if (opt.segment_frames == 0) return fail(error, "segment length must be at least one frame");
   if (opt.curve_points < 2) return fail(error, "target curve length must be at least 2 points");
+  if (opt.low_rank < -1 || opt.low_rank > 64) return fail(error, "low-rank setting must be -1 (auto), 0 (off) or 1..64");
   const double L = bbox_diagonal(anim.frames[0]);
   if (!(L > 0)) return fail(error, "rest pose has a zero bounding box (all vertices coincide)");
 
@@ -120,20 +122,26 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   m.residual = make_grid(anim, opt.tolerance * L);
   std::vector<int32_t> q, prediction;
   if (!quantize_to_grid(anim, m.residual, &q, error)) return false;
+  const std::vector<int32_t> rounded = q;
   ResidualOptions ro;
-  if (has_motion_model(m)) {
+  if (has_model_prediction(m)) {
     // The model's own frames on the grid: the residual layer's Model predictor, computed
     // by the decoder's code so both sides agree bit for bit.
     if (!model_grid_prediction(m, UINT64_MAX, &prediction, error)) return false;
     ro.model_prediction = &prediction;
   }
-  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, snap_distance(anim, opt.tolerance * L), &q, ro);
+  const double snap = snap_distance(anim, opt.tolerance * L);
+  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, snap, &q, ro);
   m.residual.payload = encode_residuals(m, q, &plan, ro);
   if (m.residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
-  progress(0.9);
+  progress(0.75);
 
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
+  LowRankChoiceOptions lro;
+  lro.components = opt.low_rank;
+  if (!choose_low_rank(&m, anim.frames, rounded, snap, wo, lro, nullptr, error)) return false;
+  progress(0.9);
   *out = write_container(m, wo);
 
   if (!measure_decoded(*out, anim, &rep.error, error)) return false;
@@ -145,6 +153,9 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   Model written;
   if (!read_container(out->data(), out->size(), &written, error, &sections)) return false;
   rep.connectivity_bytes = connectivity_bytes(sections);
+  rep.low_rank_components = m.low_rank.components;
+  for (const SectionInfo& s : sections)
+    if (s.tag == "LRNK") rep.low_rank_bytes = s.stored_bytes + kSectionHeaderBytes;
   rep.motion_bytes = rep.bytes - rep.connectivity_bytes;
   rep.vertices = V;
   rep.frames = F;

@@ -28,6 +28,10 @@ struct EncodeOptions {
   // face coder's traversal order (same triangles, same winding, same vertex ids), which
   // codes 1.5-2x smaller.
   bool exact_face_order = false;
+  // Low-rank (PCA) model of the frames for the residual layer's Model predictor (LRNK):
+  // -1 automatic (kept only where the file gets smaller), 0 off, 1..64 that many components
+  // always. Not combined with a PDE model (automatic turns off, a count is an error).
+  int low_rank = -1;
   int threads = 0;            // 0: all hardware threads; output bytes never depend on it
   std::function<void(double)> progress;  // called with the fraction done in [0, 1]; may be empty
 };
@@ -43,6 +47,8 @@ struct EncodeReport {
   CurveReport curves{};             // the extracted curves (encoder/curves/report.h)
   std::string curve_fallback;       // why curve extraction fell back to one-vertex curves, or empty
   uint64_t model_bytes = 0;         // PDE model, before entropy coding (0 without a model)
+  uint32_t low_rank_components = 0; // K of the low-rank model in the file, 0 when none
+  uint64_t low_rank_bytes = 0;      // its LRNK section as stored, header included
 };
 
 // Encodes `anim` into `out`. The returned error stats come from decoding `out` with the

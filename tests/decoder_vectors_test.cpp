@@ -15,6 +15,7 @@
 #include "codec/faces.h"
 #include "codec/residual.h"
 #include "decoder/dcurve.hpp"
+#include "decoder/model_prediction.h"
 #include "test_models.h"
 
 namespace dcurve {
@@ -25,6 +26,35 @@ struct Vector {
   Model model;
   WriteOptions options;
 };
+
+// A hand-made low-rank model (LRNK) on `m`, and its residual re-coded with the Model
+// predictor on every frame: the grid values, hence the expected positions, do not change.
+Model with_low_rank(Model m) {
+  const uint32_t V = m.meta.vertex_count, F = m.meta.frame_count, K = 2;
+  LowRankModel& lr = m.low_rank;
+  lr.components = K;
+  lr.shift = 3;
+  lr.mean_shift = 1;
+  for (uint32_t f = 0; f < F; ++f) lr.coeffs.insert(lr.coeffs.end(), {int32_t(8 * f) - 5, int32_t(f * f) - 3});
+  std::vector<int32_t> mean_and_basis;
+  for (uint32_t k = 0; k <= K; ++k)
+    for (uint32_t v = 0; v < V; ++v)
+      for (int a = 0; a < 3; ++a) mean_and_basis.push_back(k == 0 ? 2 * testing::grid_value(0, v, a) + 1 : int32_t(v % 4) * int32_t(k + a) - 2);
+  Model pseudo = m;
+  pseudo.meta.frame_count = K + 1;
+  pseudo.low_rank = LowRankModel{};
+  PredictorPlan spatial{{0, 1, 2}, std::vector<PredictorChoice>(3 * (K + 1), {PredictorKind::None, 0, 0, SpatialMode::Parallelogram})};
+  lr.basis_payload = encode_residuals(pseudo, mean_and_basis, &spatial);
+  std::vector<int32_t> prediction;
+  std::string err;
+  if (!model_grid_prediction(m, UINT64_MAX, &prediction, &err)) ADD_FAILURE() << err;
+  ResidualOptions ro;
+  ro.model_prediction = &prediction;
+  PredictorPlan plan = default_predictor_plan(F);
+  for (PredictorChoice& c : plan.choices) c = {PredictorKind::Model, 0, 0, SpatialMode::Mean};
+  m.residual.payload = encode_residuals(m, testing::grid(V, F), &plan, ro);
+  return m;
+}
 
 std::vector<Vector> recipes() {
   using testing::add_pde_motions;
@@ -55,6 +85,10 @@ std::vector<Vector> recipes() {
   add_pde_motions(&model_only, 3);
   model_only.residual = ResidualLayer{};
   v.push_back({"model_only", model_only, {}});
+
+  Model low_rank_sheet = testing::sheet_model(5, 6);
+  low_rank_sheet.faces = traversal_order(low_rank_sheet.faces);
+  v.push_back({"low_rank", with_low_rank(low_rank_sheet), {}});
   return v;
 }
 

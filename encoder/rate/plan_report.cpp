@@ -27,7 +27,7 @@ nlohmann::json predictor_use(const Model& m) {
   std::vector<int32_t> prediction;
   ResidualOptions options;
   std::string err;
-  if (has_motion_model(m)) {
+  if (has_model_prediction(m)) {
     if (!model_grid_prediction(m, UINT64_MAX, &prediction, &err)) return nullptr;
     options.model_prediction = &prediction;
   }

@@ -1,0 +1,41 @@
+// The LRNK section: a low-rank (PCA) model of the residual grid that the residual layer's
+// Model predictor uses (format_spec/dcrv.md section 17). Everything a prediction depends on
+// is integer, so encoder and decoder compute bit-identical values on every platform.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "codec/bytes.h"
+#include "codec/model.h"
+
+namespace dcurve {
+
+constexpr uint32_t kMaxLowRankComponents = 64;
+constexpr uint32_t kMaxLowRankShift = 30;
+// Bounds that keep mean * 2^shift + sum_k coeff * basis inside int64 (< 2^62) for any
+// accepted file: |mean| < 2^31 (int32), |coeff|, |basis| <= 2^24, K <= 64.
+constexpr int64_t kMaxLowRankCoeff = int64_t(1) << 24;
+constexpr int64_t kMaxLowRankBasis = int64_t(1) << 24;
+
+// Raw LRNK payload of model.low_rank (components > 0, coeffs sized frame_count * K).
+std::vector<uint8_t> low_rank_bytes(const Model& model);
+
+// Parses an LRNK payload into model->low_rank; model->meta must already hold frame_count.
+// False on any field out of range or a count the remaining bytes cannot hold.
+bool parse_low_rank(ByteReader& r, Model* model);
+
+// floor((x + 2^(s-1)) / 2^s) for s >= 1, x for s = 0: x / 2^s rounded half up, written with
+// shifts of non-negative values only so it is the same on every compiler. |x| < 2^62.
+inline int64_t round_shift(int64_t x, uint32_t s) {
+  if (s == 0) return x;
+  const int64_t y = x + (int64_t(1) << (s - 1));
+  return y >= 0 ? y >> s : -((-y + (int64_t(1) << s) - 1) >> s);
+}
+
+// The Model predictor of frame f (grid units, clamped to +-2^30) for n = V * 3 coordinates:
+// mean and basis are the decoded pseudo-frames (mean first, then K basis vectors, n each,
+// already checked against kMaxLowRankBasis), out receives n values.
+void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_basis, size_t n, int32_t* out);
+
+}  // namespace dcurve

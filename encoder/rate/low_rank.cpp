@@ -1,0 +1,102 @@
+#include "encoder/rate/low_rank.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+#include "codec/low_rank.h"
+#include "codec/residual.h"
+
+namespace dcurve {
+
+GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t n, uint32_t max_components) {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor X(F, n);
+  for (uint32_t f = 0; f < F; ++f)
+    for (size_t i = 0; i < n; ++i) X(f, Eigen::Index(i)) = q[size_t(f) * n + i];
+  GridComponents out;
+  const Eigen::RowVectorXd mean = X.colwise().mean();
+  out.mean.assign(mean.data(), mean.data() + n);
+  X.rowwise() -= mean;
+  // F is small next to 3V: the F x F Gram matrix has the same nonzero spectrum as X^T X.
+  const Eigen::MatrixXd gram = X * X.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(gram);
+  const Eigen::VectorXd lambda = eig.eigenvalues().reverse();
+  const Eigen::MatrixXd U = eig.eigenvectors().rowwise().reverse();
+  for (Eigen::Index k = 0; k < lambda.size() && uint32_t(k) < max_components; ++k) {
+    if (!(lambda(k) > 1e-12 * std::max(lambda(0), 1e-300))) break;
+    const Eigen::VectorXd w = U.col(k) * std::sqrt(double(F));
+    const Eigen::VectorXd a = (X.transpose() * U.col(k)) / std::sqrt(double(F));
+    out.weights.emplace_back(w.data(), w.data() + F);
+    out.amplitudes.emplace_back(a.data(), a.data() + n);
+  }
+  return out;
+}
+
+namespace {
+
+bool round_to(double x, int64_t limit, int32_t* out) {
+  const double r = std::nearbyint(x);
+  if (!(std::fabs(r) <= double(limit))) return false;
+  *out = int32_t(r);
+  return true;
+}
+
+// Codes the K + 1 pseudo-frames with the residual coder, each from its own mesh neighbours
+// (kind None plus one spatial mode for all), keeping the smallest of the spatial modes.
+std::vector<uint8_t> code_mean_and_basis(const Model& model, const std::vector<int32_t>& values, uint32_t frames) {
+  Model pseudo;
+  pseudo.meta = model.meta;
+  pseudo.meta.frame_count = frames;
+  pseudo.faces = model.faces;
+  pseudo.curves = model.curves;
+  std::vector<uint8_t> best;
+  for (uint8_t s = 0; s < kSpatialModeCount; ++s) {
+    PredictorPlan plan;
+    for (uint32_t f = 0; f < frames; ++f) plan.order.push_back(f);
+    plan.choices.assign(size_t(frames) * 3, PredictorChoice{PredictorKind::None, 0, 0, SpatialMode(s)});
+    std::vector<uint8_t> payload = encode_residuals(pseudo, values, &plan);
+    if (!payload.empty() && (best.empty() || payload.size() < best.size())) best.swap(payload);
+  }
+  return best;
+}
+
+}  // namespace
+
+bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, Model* model) {
+  const uint32_t F = model->meta.frame_count;
+  const size_t n = pca.mean.size();
+  if (K == 0 || K > pca.weights.size() || K > kMaxLowRankComponents || !(basis_step > 0)) return false;
+  double max_amplitude = 0;
+  for (uint32_t k = 0; k < K; ++k)
+    for (double a : pca.amplitudes[k]) max_amplitude = std::max(max_amplitude, std::fabs(a));
+  // A coefficient's rounding (<= 1/2) moves a prediction by max_amplitude / (step * 2^S):
+  // at most step / 2 once 2^S >= max_amplitude / step^2.
+  uint32_t S = mean_shift;
+  while (S < kMaxLowRankShift && std::ldexp(1.0, int(S)) < max_amplitude / (basis_step * basis_step)) ++S;
+  const double scale = basis_step * std::ldexp(1.0, int(S));
+
+  LowRankModel lr;
+  lr.components = K;
+  lr.shift = S;
+  lr.mean_shift = mean_shift;
+  lr.coeffs.resize(size_t(F) * K);
+  for (uint32_t f = 0; f < F; ++f)
+    for (uint32_t k = 0; k < K; ++k)
+      if (!round_to(pca.weights[k][f] * scale, kMaxLowRankCoeff, &lr.coeffs[size_t(f) * K + k])) return false;
+  std::vector<int32_t> values((size_t(K) + 1) * n);
+  const double mean_scale = std::ldexp(1.0, int(mean_shift));
+  for (size_t i = 0; i < n; ++i)
+    if (!round_to(pca.mean[i] * mean_scale, INT32_MAX, &values[i])) return false;
+  for (uint32_t k = 0; k < K; ++k)
+    for (size_t i = 0; i < n; ++i)
+      if (!round_to(pca.amplitudes[k][i] / basis_step, kMaxLowRankBasis, &values[(size_t(k) + 1) * n + i]))
+        return false;
+  lr.basis_payload = code_mean_and_basis(*model, values, K + 1);
+  if (lr.basis_payload.empty()) return false;
+  model->low_rank = std::move(lr);
+  return true;
+}
+
+}  // namespace dcurve

@@ -1,0 +1,32 @@
+// Principal components of an animation on the residual grid, and their quantization into a
+// file's low-rank model (codec/low_rank.h, format_spec/dcrv.md section 17).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "codec/model.h"
+
+namespace dcurve {
+
+// X = mean + sum_k weights[k] (x) amplitudes[k], all in grid units: frame f, coordinate i
+// (= v * 3 + axis) is mean[i] + sum_k weights[k][f] * amplitudes[k][i]. Weights have unit
+// RMS over the frames; amplitudes carry the component's size. Components by falling energy.
+struct GridComponents {
+  std::vector<double> mean;                    // n
+  std::vector<std::vector<double>> weights;    // K x F
+  std::vector<std::vector<double>> amplitudes; // K x n
+};
+
+// PCA of the grid values q (frame-major, F frames of n values) through the F x F Gram matrix
+// (cheap when F is small next to n), keeping at most max_components components with
+// non-negligible energy. Deterministic.
+GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t n, uint32_t max_components);
+
+// Quantizes the first K components (K <= pca.weights.size()) into model->low_rank: basis
+// values on a step of basis_step grid units, the mean on 2^-mean_shift grid units, the
+// coefficients fine enough that their rounding moves a prediction by at most basis_step / 2;
+// codes the mean and basis with the residual coder (model's faces or curves give the
+// neighbours). False when a value would leave the format's ranges.
+bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, Model* model);
+
+}  // namespace dcurve

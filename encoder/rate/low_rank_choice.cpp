@@ -1,0 +1,236 @@
+#include "encoder/rate/low_rank_choice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+#include "codec/error.h"
+#include "codec/low_rank.h"
+#include "codec/residual.h"
+#include "decoder/model_prediction.h"
+#include "encoder/rate/low_rank.h"
+#include "encoder/rate/residual_plan.h"
+
+namespace dcurve {
+namespace {
+
+// Component counts screened (those the PCA provides), and the basis step (grid units) they
+// are screened at; the best count is then screened at the other steps. The residual layer
+// corrects what the basis rounds off, so the best step trades basis bytes against
+// residual bytes (0.1-0.25 grid steps on the built-in scenes).
+constexpr uint32_t kComponentCounts[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
+constexpr double kFirstStep = 0.15;
+constexpr double kOtherSteps[] = {0.1, 0.25, 0.4};
+// Frames the screening estimate samples (every ceil(F / this)-th frame).
+constexpr uint32_t kScreenFrames = 24;
+// Counts past the best one screened before giving up on larger ones.
+constexpr int kPatience = 2;
+// The screening estimate ignores the coder's contexts and takes each frame's better
+// predictor for free, so it overstates savings (measured: 1.15-1.25x on cantilever, neck and
+// blob, 7x on chicken-crossing). On inputs of more than kCheapTrial vertex-frames a full
+// trial runs only when the estimated saving is at least kTrialSavingFactor times the
+// section's raw bytes: that skips the losing trial on chicken-crossing (1.87x, 7 s of
+// encode) and keeps the winning ones (cantilever 3.2x, neck 2.5x); a large input whose model
+// would save less than that is missed. Smaller inputs try every estimated net saving.
+constexpr double kTrialSavingFactor = 2.0;
+constexpr double kCheapTrial = double(1 << 18);
+// Above this many multiply-adds the F x F Gram matrix is not worth building automatically.
+constexpr double kMaxGramWork = 4e9;
+
+// The mean enters every frame's prediction the same way: it is stored about as finely as the
+// basis (2^-mean_shift ~ step, at most 8 bits below the grid).
+uint32_t mean_shift_for(double step) {
+  return uint32_t(std::clamp(std::lround(-std::log2(step)), 0L, 8L));
+}
+
+// Estimated bits of each frame's residuals under `plan` (indexed by frame), one context per
+// frame: only compared with the same estimate of another plan.
+std::vector<double> frame_bits(const Model& m, const std::vector<int32_t>& q, const PredictorPlan& plan,
+                               const ResidualOptions& ro) {
+  const size_t n = size_t(m.meta.vertex_count) * 3;
+  const std::vector<int64_t> r = residual_values(m, q, plan, ro);
+  std::vector<double> bits(m.meta.frame_count, 0.0);
+  const std::vector<uint8_t> contexts(n, 0);
+  for (size_t k = 0; k < plan.order.size(); ++k) {
+    const std::vector<int64_t> slice(r.begin() + std::ptrdiff_t(k * n), r.begin() + std::ptrdiff_t((k + 1) * n));
+    bits[plan.order[k]] = estimate_residual_bits(slice, contexts);
+  }
+  return bits;
+}
+
+struct Candidate {
+  LowRankModel model;
+  double basis_step = 0;
+  double saved_bytes = 0;    // estimated residual bytes saved
+  double section_bytes = 0;  // the LRNK section's raw bytes
+  double net_bytes = 0;      // the difference
+};
+
+// Every `stride`-th frame of an encode: the screening estimate's sample. With the Model
+// predictor alone, frames are coded independently, so a sample estimates the whole.
+struct FrameSample {
+  std::vector<uint32_t> frames;  // indices into the full animation
+  Model model;                   // counts, faces, curves and grid for frames.size() frames
+  std::vector<std::vector<float>> input;
+  std::vector<int32_t> rounded;
+};
+
+FrameSample sample_frames(const Model& model, const std::vector<std::vector<float>>& frames,
+                          const std::vector<int32_t>& rounded, uint32_t stride) {
+  const size_t n = size_t(model.meta.vertex_count) * 3;
+  FrameSample s;
+  s.model.meta = model.meta;
+  s.model.faces = model.faces;
+  s.model.curves = model.curves;
+  s.model.residual.step = model.residual.step;
+  std::copy(model.residual.origin, model.residual.origin + 3, s.model.residual.origin);
+  for (uint32_t f = 0; f < model.meta.frame_count; f += stride) {
+    s.frames.push_back(f);
+    s.input.push_back(frames[f]);
+    s.rounded.insert(s.rounded.end(), rounded.begin() + std::ptrdiff_t(f * n),
+                     rounded.begin() + std::ptrdiff_t((f + 1) * n));
+  }
+  s.model.meta.frame_count = uint32_t(s.frames.size());
+  return s;
+}
+
+// Residual plan and payload of `trial` with its low-rank prediction (full trial).
+bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>& frames,
+                            const std::vector<int32_t>& rounded, double snap_distance,
+                            const ResidualPlanOptions& plan_options, std::string* error) {
+  std::vector<int32_t> prediction, q = rounded;
+  if (!model_grid_prediction(*trial, UINT64_MAX, &prediction, error)) return false;
+  ResidualOptions ro;
+  ro.model_prediction = &prediction;
+  const PredictorPlan plan = choose_plan_and_grid(*trial, frames, snap_distance, &q, ro, plan_options);
+  trial->residual.payload = encode_residuals(*trial, q, &plan, ro);
+  if (trial->residual.payload.empty()) return fail(error, "internal error: the low-rank residual plan is invalid");
+  return true;
+}
+
+}  // namespace
+
+bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
+                     double snap_distance, const WriteOptions& write_options, const LowRankChoiceOptions& options,
+                     LowRankChoiceReport* report, std::string* error) {
+  LowRankChoiceReport rep;
+  const uint32_t F = model->meta.frame_count;
+  const size_t n = size_t(model->meta.vertex_count) * 3;
+  const bool forced = options.components > 0;
+  rep.bytes_without = write_container(*model, write_options).size();
+  if (report) *report = rep;
+  if (options.components == 0) return true;
+  if (options.components > int(kMaxLowRankComponents))
+    return fail(error, "low-rank component count must be at most " + std::to_string(kMaxLowRankComponents));
+  if (has_motion_model(*model)) {
+    if (forced) return fail(error, "a low-rank model cannot be combined with a PDE motion model");
+    return true;
+  }
+  if (!forced && (F < 3 || double(F) * F * double(n) > kMaxGramWork)) return true;
+
+  // What the residual layer pays today, frame by frame.
+  std::vector<int32_t> q_without;
+  PredictorPlan plan_without;
+  if (!decode_residuals(*model, &q_without, error) || !decode_predictor_plan(*model, &plan_without, error))
+    return false;
+  const std::vector<double> bits_without = frame_bits(*model, q_without, plan_without, {});
+
+  const GridComponents pca = grid_components(rounded, F, n, std::min<uint32_t>(kMaxLowRankComponents, F - 1));
+  if (pca.weights.empty()) return true;
+  // Screening: the Model predictor alone, time order, on a sample of the frames, against
+  // today's bits of the same frames. A model whose section alone outweighs today's residual
+  // payload cannot pay and is skipped.
+  ResidualPlanOptions screen;
+  screen.kinds = 1u << int(PredictorKind::Model);
+  screen.gop_sizes = {1};
+  // An odd stride: hierarchical coding orders make every power-of-two-th frame dearer.
+  const FrameSample sample = sample_frames(*model, frames, rounded, ((F + kScreenFrames - 1) / kScreenFrames) | 1);
+  const double sample_scale = double(F) / double(sample.frames.size());
+  std::vector<Candidate> candidates;
+  auto try_candidate = [&](uint32_t K, double step, bool* screened) {
+    *screened = false;
+    Model trial = *model;
+    if (!quantize_low_rank(pca, K, step, mean_shift_for(step), &trial)) return true;
+    const double section = double(low_rank_bytes(trial).size());
+    if (!forced && section >= double(model->residual.payload.size())) return true;
+    std::vector<int32_t> prediction, sampled, q = sample.rounded;
+    if (!model_grid_prediction(trial, UINT64_MAX, &prediction, error)) return false;
+    for (uint32_t f : sample.frames)
+      sampled.insert(sampled.end(), prediction.begin() + std::ptrdiff_t(f * n),
+                     prediction.begin() + std::ptrdiff_t((f + 1) * n));
+    ResidualOptions ro;
+    ro.model_prediction = &sampled;
+    const PredictorPlan plan = choose_plan_and_grid(sample.model, sample.input, snap_distance, &q, ro, screen);
+    const std::vector<double> bits = frame_bits(sample.model, q, plan, ro);
+    double saved = 0;
+    for (size_t j = 0; j < sample.frames.size(); ++j)
+      saved += std::max(0.0, bits_without[sample.frames[j]] - bits[j]) / 8 * sample_scale;
+    candidates.push_back({std::move(trial.low_rank), step, saved, section, saved - section});
+    ++rep.screened;
+    *screened = true;
+    return true;
+  };
+  const uint32_t available = uint32_t(pca.weights.size());
+  std::vector<uint32_t> counts;
+  if (forced) counts.push_back(std::min(uint32_t(options.components), available));
+  for (uint32_t K : kComponentCounts)
+    if (!forced && K <= available) counts.push_back(K);
+  uint32_t best_count = 0;
+  double best_net = -HUGE_VAL;
+  int worse = 0;
+  for (uint32_t K : counts) {
+    if (worse >= kPatience) break;
+    bool screened = false;
+    if (!try_candidate(K, kFirstStep, &screened)) return false;
+    if (!screened) break;  // larger counts cost more still
+    if (candidates.back().net_bytes > best_net) {
+      best_net = candidates.back().net_bytes;
+      best_count = K;
+      worse = 0;
+    } else {
+      ++worse;
+    }
+  }
+  // Other steps for the best count, unless even the coarsest could not pay: a coarser basis
+  // saves less, and its section shrinks by about the step ratio at most.
+  const auto best_it = std::max_element(candidates.begin(), candidates.end(),
+                                        [](const Candidate& a, const Candidate& b) { return a.net_bytes < b.net_bytes; });
+  const bool refine = best_it != candidates.end() &&
+                      best_it->saved_bytes > kFirstStep / kOtherSteps[std::size(kOtherSteps) - 1] * best_it->section_bytes;
+  for (double step : kOtherSteps) {
+    bool screened = false;
+    if (refine && !try_candidate(best_count, step, &screened)) return false;
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.net_bytes > b.net_bytes; });
+
+  // Full trials of the promising ones; the smallest whole file wins. With a good model the
+  // coding order matters little: time order and the order chosen without one are tried.
+  ResidualPlanOptions trial_plan;
+  trial_plan.gop_sizes = {1};
+  if (F > 2 && plan_without.order[1] > 1) trial_plan.gop_sizes.push_back(plan_without.order[1]);
+  uint64_t best = forced ? UINT64_MAX : rep.bytes_without;
+  Model best_model;
+  for (const Candidate& c : candidates) {
+    if (rep.trials >= options.max_trials) break;
+    const double factor = double(F) * model->meta.vertex_count <= kCheapTrial ? 1.0 : kTrialSavingFactor;
+    if (!forced && c.saved_bytes <= factor * c.section_bytes) continue;
+    Model trial = *model;
+    trial.low_rank = c.model;
+    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, error))
+      return false;
+    ++rep.trials;
+    const uint64_t bytes = write_container(trial, write_options).size();
+    if (bytes < best) {
+      best = bytes;
+      best_model = std::move(trial);
+      rep.components = c.model.components;
+      rep.basis_step = c.basis_step;
+    }
+  }
+  if (rep.components > 0) *model = std::move(best_model);
+  if (report) *report = rep;
+  return true;
+}
+
+}  // namespace dcurve

@@ -1,0 +1,253 @@
+// The low-rank model (LRNK): integer predictions that both sides reproduce, encodes that keep
+// the tolerance on every frame, and files with a damaged or absurd LRNK section rejected.
+#include <gtest/gtest.h>
+#include <zstd.h>
+
+#include <cmath>
+#include <random>
+
+#include "codec/container.h"
+#include "codec/low_rank.h"
+#include "codec/residual.h"
+#include "codec/validate.h"
+#include "container_bytes.h"
+#include "decoder/dcurve.hpp"
+#include "decoder/model_prediction.h"
+#include "encoder/encoder.h"
+#include "encoder/metrics.h"
+#include "encoder/sim/scene.h"
+
+namespace dcurve {
+namespace {
+
+using testing::RawFile;
+using testing::RawSection;
+
+// A W x H sheet bending in two smooth modes with a travelling offset: rank 3 after the mean,
+// exactly what a low-rank model captures and temporal deltas do not.
+Animation bending_sheet(uint32_t W, uint32_t H, uint32_t F) {
+  Animation anim;
+  anim.vertex_count = W * H;
+  for (uint32_t y = 0; y + 1 < H; ++y)
+    for (uint32_t x = 0; x + 1 < W; ++x) {
+      const uint32_t v = y * W + x;
+      anim.faces.insert(anim.faces.end(), {v, v + 1, v + W, v + 1, v + W + 1, v + W});
+    }
+  for (uint32_t f = 0; f < F; ++f) {
+    const double t = 2 * M_PI * f / F;
+    std::vector<float> xyz;
+    for (uint32_t y = 0; y < H; ++y)
+      for (uint32_t x = 0; x < W; ++x) {
+        const double u = double(x) / (W - 1), w = double(y) / (H - 1);
+        const double bend = 0.3 * std::sin(M_PI * u) * std::sin(t) + 0.15 * u * u * std::cos(2 * t);
+        xyz.insert(xyz.end(), {float(u + 0.05 * std::sin(t) * w), float(0.5 * w), float(bend + 0.1 * w * std::sin(3 * t))});
+      }
+    anim.frames.push_back(std::move(xyz));
+  }
+  return anim;
+}
+
+std::vector<uint8_t> encode(const Animation& anim, int low_rank, EncodeReport* rep) {
+  EncodeOptions o;
+  o.tolerance = 1e-3;
+  o.low_rank = low_rank;
+  std::vector<uint8_t> bytes;
+  std::string err;
+  EXPECT_TRUE(encode_animation(anim, o, &bytes, rep, &err)) << err;
+  return bytes;
+}
+
+// Largest vertex error of the decoded file over all frames, as a fraction of L.
+double decoded_max_error(const std::vector<uint8_t>& bytes, const Animation& anim) {
+  std::string err;
+  auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+  EXPECT_TRUE(dec) << err;
+  if (!dec) return HUGE_VAL;
+  const double L = bbox_diagonal(anim.frames[0]);
+  double worst = 0;
+  std::vector<float> xyz(size_t(anim.vertex_count) * 3);
+  for (uint32_t f = 0; f < anim.frames.size(); ++f) {
+    dec->evaluate_frame(f, xyz.data());
+    for (size_t v = 0; v < anim.vertex_count; ++v) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += std::pow(double(xyz[3 * v + a]) - anim.frames[f][3 * v + a], 2);
+      worst = std::max(worst, std::sqrt(d2) / L);
+    }
+  }
+  return worst;
+}
+
+std::vector<uint8_t> raw_payload(const RawSection& s) {
+  if (!(s.flags & 2)) return s.stored;
+  std::vector<uint8_t> raw(s.raw_size);
+  EXPECT_EQ(ZSTD_decompress(raw.data(), raw.size(), s.stored.data(), s.stored.size()), raw.size());
+  return raw;
+}
+
+// `bytes` with its LRNK section's raw payload replaced (stored uncompressed, valid CRCs).
+std::vector<uint8_t> with_low_rank_payload(const std::vector<uint8_t>& bytes, const std::vector<uint8_t>& raw) {
+  RawFile f = testing::split_file(bytes);
+  for (RawSection& s : f.sections)
+    if (s.tag == "LRNK") s = testing::plain_section("LRNK", true, raw);
+  return testing::assemble(f);
+}
+
+std::vector<uint8_t> low_rank_payload(const std::vector<uint8_t>& bytes) {
+  for (const RawSection& s : testing::split_file(bytes).sections)
+    if (s.tag == "LRNK") return raw_payload(s);
+  ADD_FAILURE() << "no LRNK section";
+  return {};
+}
+
+TEST(LowRank, RoundShiftIsHalfUpDivision) {
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 20000; ++i) {
+    const int64_t x = int64_t(rng() >> 3) - (int64_t(1) << 60);
+    const uint32_t s = uint32_t(rng() % 31);
+    const __int128 d = __int128(1) << s, n = __int128(x) * 2 + d, den = 2 * d;
+    __int128 q = n / den;
+    if (n % den != 0 && n < 0) --q;  // floor
+    ASSERT_EQ(round_shift(x, s), int64_t(q)) << x << " >> " << s;
+  }
+  EXPECT_EQ(round_shift(-3, 1), -1);  // -1.5 rounds up
+  EXPECT_EQ(round_shift(3, 1), 2);
+  EXPECT_EQ(round_shift(-5, 2), -1);
+}
+
+TEST(LowRank, ChosenOnALowRankAnimationAndWithinToleranceEveryFrame) {
+  const Animation anim = bending_sheet(16, 10, 40);
+  EncodeReport with, without;
+  const std::vector<uint8_t> auto_bytes = encode(anim, -1, &with);
+  const std::vector<uint8_t> off_bytes = encode(anim, 0, &without);
+  EXPECT_GT(with.low_rank_components, 0u);
+  EXPECT_EQ(without.low_rank_components, 0u);
+  EXPECT_LT(auto_bytes.size(), off_bytes.size());
+  EXPECT_LE(decoded_max_error(auto_bytes, anim), 1e-3);
+  const std::vector<uint8_t> forced = encode(anim, 5, &with);
+  EXPECT_EQ(with.low_rank_components, 5u);
+  EXPECT_LE(decoded_max_error(forced, anim), 1e-3);
+}
+
+TEST(LowRank, BuiltinSceneWithinToleranceEveryFrame) {
+  Scene scene;
+  std::string err;
+  ASSERT_TRUE(builtin_scene("cantilever", &scene, &err)) << err;
+  scene.frames = 16;
+  Animation anim;
+  ASSERT_TRUE(simulate_scene(scene, &anim, {}, &err)) << err;
+  for (int k : {-1, 3}) {
+    EncodeReport rep;
+    const std::vector<uint8_t> bytes = encode(anim, k, &rep);
+    if (k > 0) {
+      EXPECT_EQ(rep.low_rank_components, uint32_t(k));
+    }
+    EXPECT_LE(decoded_max_error(bytes, anim), 1e-3) << "low_rank " << k;
+  }
+}
+
+TEST(LowRank, PredictionIsTheSameOnEveryPath) {
+  const Animation anim = bending_sheet(12, 8, 24);
+  EncodeReport rep;
+  const std::vector<uint8_t> bytes = encode(anim, 3, &rep);
+  Model m;
+  std::string err;
+  ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &m, &err)) << err;
+  ASSERT_EQ(m.low_rank.components, 3u);
+  std::vector<int32_t> p1, p2, p3;
+  ASSERT_TRUE(model_grid_prediction(m, UINT64_MAX, &p1, &err)) << err;
+  ASSERT_TRUE(model_grid_prediction(m, UINT64_MAX, &p2, &err)) << err;
+  EXPECT_EQ(p1, p2);
+  // Written again by the writer (the encoder's path) and read back: the same values.
+  const std::vector<uint8_t> again = write_container(m);
+  EXPECT_EQ(again, bytes);
+  Model m2;
+  ASSERT_TRUE(read_container(again.data(), again.size(), &m2, &err)) << err;
+  ASSERT_TRUE(model_grid_prediction(m2, UINT64_MAX, &p3, &err)) << err;
+  EXPECT_EQ(p1, p3);
+  // The prediction is close to the decoded grid: the model predicts, it is not noise.
+  std::vector<int32_t> q;
+  ResidualOptions ro;
+  ro.model_prediction = &p1;
+  ASSERT_TRUE(decode_residuals(m, &q, &err, ro)) << err;
+  double sum2 = 0;
+  for (size_t i = 0; i < q.size(); ++i) sum2 += std::pow(double(q[i]) - p1[i], 2);
+  EXPECT_LT(std::sqrt(sum2 / double(q.size())), 1.0);
+}
+
+TEST(LowRank, DamagedSectionIsRejected) {
+  const Animation anim = bending_sheet(10, 6, 16);
+  EncodeReport rep;
+  const std::vector<uint8_t> bytes = encode(anim, 2, &rep);
+  const std::vector<uint8_t> raw = low_rank_payload(bytes);
+  ASSERT_FALSE(raw.empty());
+  std::string err;
+  auto original = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+  ASSERT_TRUE(original) << err;
+  std::vector<float> a(size_t(anim.vertex_count) * 3), b(a.size());
+  for (size_t cut = 0; cut < raw.size(); ++cut) {
+    const std::vector<uint8_t> file = with_low_rank_payload(bytes, {raw.begin(), raw.begin() + std::ptrdiff_t(cut)});
+    EXPECT_FALSE(Decoder::open_memory(file.data(), file.size(), &err)) << "truncated to " << cut;
+  }
+  for (size_t i = 0; i < raw.size(); ++i) {
+    std::vector<uint8_t> damaged = raw;
+    damaged[i] ^= 0x5a;
+    const std::vector<uint8_t> file = with_low_rank_payload(bytes, damaged);
+    auto dec = Decoder::open_memory(file.data(), file.size(), &err);
+    if (!dec) continue;
+    // A change the prediction does not see may decode; then it decodes to the same frames.
+    for (uint32_t f = 0; f < dec->frame_count(); ++f) {
+      dec->evaluate_frame(f, a.data());
+      original->evaluate_frame(f, b.data());
+      ASSERT_EQ(a, b) << "byte " << i;
+    }
+  }
+}
+
+TEST(LowRank, AbsurdFieldsAreRejected) {
+  const Animation anim = bending_sheet(10, 6, 16);
+  EncodeReport rep;
+  const std::vector<uint8_t> bytes = encode(anim, 2, &rep);
+  const std::vector<uint8_t> raw = low_rank_payload(bytes);
+  ASSERT_GE(raw.size(), 3u);
+  Model m;
+  std::string err;
+  auto rejected = [&](std::vector<uint8_t> payload, const char* what) {
+    const std::vector<uint8_t> file = with_low_rank_payload(bytes, payload);
+    EXPECT_FALSE(read_container(file.data(), file.size(), &m, &err)) << what;
+  };
+  for (uint8_t K : {0, 65, 255}) {
+    std::vector<uint8_t> p = raw;
+    p[0] = K;
+    rejected(p, "component count");
+  }
+  std::vector<uint8_t> p = raw;
+  p[1] = 31;
+  rejected(p, "shift above 30");
+  p = raw;
+  p[2] = uint8_t(p[1] + 1);
+  rejected(p, "mean shift above shift");
+  // A coefficient far outside +-2^24: the first one, written as a 5-byte varint.
+  p = {raw[0], raw[1], raw[2], 0x80, 0x80, 0x80, 0x80, 0x01};
+  rejected(p, "coefficient out of range");
+  // More coefficients than bytes, and a basis payload longer than the section.
+  rejected({64, 10, 0, 0, 0}, "counts beyond the payload");
+  p = {raw[0], raw[1], raw[2]};
+  for (size_t i = 0; i < size_t(raw[0]) * anim.frames.size(); ++i) p.push_back(0);
+  p.insert(p.end(), {0xff, 0xff, 0xff, 0xff, 0x0f});
+  rejected(p, "basis payload size");
+  // An unknown reader must not skip it: the REQUIRED flag is set.
+  for (const RawSection& s : testing::split_file(bytes).sections)
+    if (s.tag == "LRNK") {
+      EXPECT_TRUE(s.flags & 1);
+    }
+  // A low-rank model and PDE motions together are invalid.
+  ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &m, &err)) << err;
+  m.segments = {Segment{0, m.meta.frame_count - 1, FitMode::Absolute, {}}};
+  m.segments[0].motion.resize(size_t(m.curves.curve_count()) * 3);
+  m.segments[0].motion[0].basis = Basis::Pde8;
+  m.segments[0].motion[0].coeffs.assign(8, 0.f);
+  EXPECT_FALSE(validate_model(m, &err));
+}
+
+}  // namespace
+}  // namespace dcurve
