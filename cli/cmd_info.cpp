@@ -43,19 +43,46 @@ nlohmann::json predictor_use(const Model& m) {
     options.model_prediction = &prediction;
   }
   PredictorPlan plan;
-  if (!decode_predictor_plan(m, &plan, &err, options)) return nullptr;
-  static const char* kinds[] = {"none", "reference", "linear", "model"};
+  if (!decode_predictor_plan(m, &plan, &err, options, true)) return nullptr;
+  static const char* kinds[] = {"none", "reference", "linear", "model", "motion"};
   static const char* spatial[] = {"off", "mean", "parallelogram", "blend"};
-  nlohmann::json k = nlohmann::json::object(), sp = nlohmann::json::object();
-  for (const PredictorChoice& c : plan.choices) {
-    const std::string kn = size_t(c.kind) < 4 ? kinds[size_t(c.kind)] : "other";
-    const std::string sn = size_t(c.spatial) < 4 ? spatial[size_t(c.spatial)] : "other";
-    k[kn] = k.value(kn, 0) + 1;
-    sp[sn] = sp.value(sn, 0) + 1;
+  auto count = [](nlohmann::json& j, const std::string& key) { j[key] = j.value(key, 0) + 1; };
+  auto kind_name = [&](const PredictorChoice& c) {
+    return size_t(c.kind) < kPredictorKindCount ? kinds[size_t(c.kind)] : "other";
+  };
+  // kind, spatial: each frame's first candidate, per axis; cluster_kind: what every
+  // (frame, cluster, axis) actually uses.
+  nlohmann::json k = nlohmann::json::object(), sp = nlohmann::json::object(), ck = nlohmann::json::object();
+  const uint32_t clusters = cluster_count(m.meta.vertex_count, plan.cluster_size);
+  uint64_t candidates = 0, clustered_frames = 0, motion_maps = 0;
+  for (const FramePredictors& fp : plan.frames) {
+    for (const PredictorChoice& c : fp.candidates[0]) {
+      count(k, kind_name(c));
+      count(sp, size_t(c.spatial) < kSpatialModeCount ? spatial[size_t(c.spatial)] : "other");
+    }
+    candidates += fp.candidates.size();
+    clustered_frames += fp.candidates.size() > 1;
+    for (uint32_t cl = 0; cl < clusters; ++cl) {
+      const auto& used = fp.candidates[fp.cluster_candidate.empty() ? 0 : fp.cluster_candidate[cl]];
+      bool motion = false;
+      for (const PredictorChoice& c : used) {
+        count(ck, kind_name(c));
+        motion = motion || c.kind == PredictorKind::Motion;
+      }
+      motion_maps += motion;
+    }
   }
   bool time_order = true;
   for (size_t i = 0; i < plan.order.size(); ++i) time_order = time_order && plan.order[i] == i;
-  return {{"kind", k}, {"spatial", sp}, {"coding_order", time_order ? "time" : "hierarchical"}};
+  return {{"kind", k},
+          {"spatial", sp},
+          {"coding_order", time_order ? "time" : "hierarchical"},
+          {"cluster_size", std::min<uint64_t>(plan.cluster_size, m.meta.vertex_count)},
+          {"clusters", clusters},
+          {"candidates", candidates},
+          {"clustered_frames", clustered_frames},
+          {"cluster_kind", ck},
+          {"motion_transforms", motion_maps}};
 }
 
 nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& bytes, const Model& m,
@@ -165,6 +192,12 @@ void print_text(const nlohmann::json& j) {
       std::printf("  predictors per frame and axis: %s; spatial corrections: %s; %s coding order\n",
                   r["predictors"]["kind"].dump().c_str(), r["predictors"]["spatial"].dump().c_str(),
                   r["predictors"]["coding_order"].get<std::string>().c_str());
+    if (!r["predictors"].is_null())
+      std::printf("  clusters: %s of up to %s vertices; %s candidates over %s frames with several; "
+                  "per cluster and axis: %s; motion maps: %s\n",
+                  r["predictors"]["clusters"].dump().c_str(), r["predictors"]["cluster_size"].dump().c_str(),
+                  r["predictors"]["candidates"].dump().c_str(), r["predictors"]["clustered_frames"].dump().c_str(),
+                  r["predictors"]["cluster_kind"].dump().c_str(), r["predictors"]["motion_transforms"].dump().c_str());
   }
   else
     std::printf("  no residual layer: positions come from the motion model alone\n");

@@ -131,8 +131,8 @@ TEST(ResidualCodec, EveryPredictorAloneRoundTripsWithinTolerance) {
           // Linear needs two decoded frames: in time order frame 1 has only one.
           for (size_t k = 2; k < kFrames; ++k) {
             const uint32_t f = r.plan.order[k];
-            EXPECT_EQ(r.plan.choices[f * 3].kind, c.kind) << "frame " << f;
-            EXPECT_EQ(r.plan.choices[f * 3].spatial, c.spatial) << "frame " << f;
+            EXPECT_EQ(r.plan.frames[f].candidates[0][0].kind, c.kind) << "frame " << f;
+            EXPECT_EQ(r.plan.frames[f].candidates[0][0].spatial, c.spatial) << "frame " << f;
           }
           for (double e : r.error.max_error_per_frame) EXPECT_LE(e, tol);
         }
@@ -146,7 +146,7 @@ TEST(ResidualCodec, ReferenceFramesFindTheRepeatedPoses) {
   const LoopResult r = closed_loop(anim, 1e-3, true, po);
   EXPECT_EQ(r.decoded, r.chosen);
   // Frames 7..9 repeat frames 1..3 exactly: the best reference is 6 frames back.
-  for (uint32_t f = 7; f < kFrames; ++f) EXPECT_EQ(r.plan.choices[f * 3].r0, f - 6) << "frame " << f;
+  for (uint32_t f = 7; f < kFrames; ++f) EXPECT_EQ(r.plan.frames[f].candidates[0][0].r0, f - 6) << "frame " << f;
 }
 
 TEST(ResidualCodec, ModelPredictorUsesTheSuppliedGridPrediction) {
@@ -162,7 +162,7 @@ TEST(ResidualCodec, ModelPredictorUsesTheSuppliedGridPrediction) {
   po.kinds = 1u << int(PredictorKind::Model);
   const LoopResult r = closed_loop(anim, 1e-3, true, po, ro);
   EXPECT_EQ(r.decoded, r.chosen);
-  for (uint32_t f = 0; f < kFrames; ++f) EXPECT_EQ(r.plan.choices[f * 3].kind, PredictorKind::Model);
+  for (uint32_t f = 0; f < kFrames; ++f) EXPECT_EQ(r.plan.frames[f].candidates[0][0].kind, PredictorKind::Model);
   for (double e : r.error.max_error_per_frame) EXPECT_LE(e, 1e-3);
 
   // Without the model values the payload cannot be decoded, and says why.
@@ -251,9 +251,11 @@ TEST(ResidualCodec, PlanReferringToLaterFramesIsRejected) {
   std::vector<int32_t> q;
   Model m = grid_model(anim, 1e-3, true, &q);
   m.residual.payload = encode_residuals(m, q);  // default plan: frame 0 None, then Reference f - 1
-  // Header 6 bytes; per frame: order varint, then per axis a kind byte and, for
-  // Reference, the zigzag varint of r0 - f (-1 -> 1).
-  const size_t ref_of_frame3_axis1 = 6 + (1 + 3) + 2 * (1 + 3 * 2) + 1 + 2 + 1;
+  // Header 6 bytes, the cluster size (UINT32_MAX: a 5-byte varint) and the motion block
+  // (1 byte); per frame: order
+  // varint, candidate count, then per axis a kind byte and, for Reference, the zigzag
+  // varint of r0 - f (-1 -> 1).
+  const size_t ref_of_frame3_axis1 = 6 + 5 + 1 + (2 + 3) + 2 * (2 + 3 * 2) + 2 + 2 + 1;
   ASSERT_EQ(m.residual.payload[ref_of_frame3_axis1], 1);
   m.residual.payload[ref_of_frame3_axis1] = 3;  // -2 -> frame 1 decoded; use a later frame:
   m.residual.payload[ref_of_frame3_axis1] = 2;  // +1: frame 4, not decoded yet

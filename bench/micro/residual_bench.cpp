@@ -68,7 +68,7 @@ const Case* load(const std::string& seq, double tol) {
   for (size_t i = 0; i < c.q.size(); ++i) delta[i] = rounded[i] - (i >= n ? rounded[i - n] : 0);
   c.delta_zstd = varint_zstd(delta);
   PredictorPlan plan;
-  if (!decode_predictor_plan(c.model, &plan, &err)) return nullptr;
+  if (!decode_predictor_plan(c.model, &plan, &err, {}, true)) return nullptr;
   c.plan_zstd = varint_zstd(residual_values(c.model, c.q, plan));
   return &cache.emplace(key, std::move(c)).first->second;
 }
