@@ -153,12 +153,15 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
     const float* input = frames[f].data();
     std::copy(qf, qf + stride, orig.begin());
     // The pool: the frame-wide candidates, and a motion-compensated twin of every Reference.
-    std::vector<PredictorChoice> pool = candidates_for(*q, V, f, decoded, options, po);
-    if (po.kinds >> int(PredictorKind::Motion) & 1) {
-      const size_t n = pool.size();
-      for (size_t i = 0; i < n; ++i)
-        if (pool[i].kind == PredictorKind::Reference) pool.push_back({PredictorKind::Motion, pool[i].r0, 0, pool[i].spatial});
+    ResidualPlanOptions with_references = po;
+    with_references.kinds |= 1u << int(PredictorKind::Reference);
+    std::vector<PredictorChoice> pool;
+    for (const PredictorChoice& c : candidates_for(*q, V, f, decoded, options, with_references)) {
+      if (c.kind != PredictorKind::Reference || po.kinds >> int(PredictorKind::Reference) & 1) pool.push_back(c);
+      if (c.kind == PredictorKind::Reference && po.kinds >> int(PredictorKind::Motion) & 1)
+        pool.push_back({PredictorKind::Motion, c.r0, 0, c.spatial});
     }
+    if (pool.empty()) pool.push_back({PredictorKind::None, 0, 0, SpatialMode::Off});
     base.resize(pool.size() * stride);
     for (size_t c = 0; c < pool.size(); ++c)
       for (int a = 0; a < 3; ++a) base_prediction(pool[c], f, a, V, q->data(), options, &base[(c * 3 + size_t(a)) * V]);

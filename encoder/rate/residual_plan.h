@@ -35,7 +35,7 @@ struct ResidualPlanOptions {
   struct ClusterLayout {
     uint32_t cluster_size, motion_block;
   };
-  std::vector<ClusterLayout> cluster_layouts = {{16, 16}, {256, 1}};
+  std::vector<ClusterLayout> cluster_layouts = {{8, 32}, {256, 1}};
   uint32_t max_candidates = 8;  // candidates a frame may keep, 1..16
 };
 
