@@ -277,13 +277,9 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
       if (allowed.size() <= max_candidates) break;
       allowed.resize(max_candidates);
     }
-    // The frame's candidates, most used first.
-    std::vector<uint32_t> uses(pool.size(), 0);
-    for (uint32_t c : chosen) ++uses[c];
-    std::vector<uint32_t> used;
-    for (uint32_t c = 0; c < pool.size(); ++c)
-      if (uses[c]) used.push_back(c);
-    std::stable_sort(used.begin(), used.end(), [&](uint32_t a, uint32_t b) { return uses[a] > uses[b]; });
+    // The frame's candidates: the ones used, most used first (the second round never
+    // uses more than max_candidates, so the loop always ends through the break).
+    const std::vector<uint32_t>& used = allowed;
     FramePredictors& fp = plan.frames[f];
     bool any_motion = false;
     for (uint32_t c : used) {

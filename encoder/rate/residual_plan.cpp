@@ -1,11 +1,13 @@
 #include "encoder/rate/residual_plan.h"
 
+#include "encoder/parallel.h"
 #include "encoder/rate/cluster_plan.h"
 #include "encoder/rate/plan_steps.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 
 namespace dcurve {
@@ -255,36 +257,41 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
   const Traversal trav = build_traversal(model);
   // A hair inside the bound, so rounding in the error measurement cannot push it over.
   const double radius = max_distance * (1.0 - 1e-9);
-  PredictorPlan best_plan;
-  std::vector<int32_t> best_q;
-  double best = HUGE_VAL;
-  for (uint32_t gop : po.gop_sizes) {
-    std::vector<int32_t> trial(*q);
+  // Independent trials run in parallel; the first smallest wins, whatever the thread count.
+  struct Trial {
+    std::vector<int32_t> q;
     PredictorPlan plan;
-    plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, gop), options, po, &trial, &plan);
+    size_t bytes = SIZE_MAX;
+  };
+  auto keep_smallest = [](std::vector<Trial>& trials, Trial* best) {
+    for (Trial& t : trials)
+      if (t.bytes < best->bytes) *best = std::move(t);
+  };
+  Trial best;
+  std::vector<Trial> orders(po.gop_sizes.size());
+  parallel_for(orders.size(), po.threads, [&](size_t i) {
+    Trial& t = orders[i];
+    t.q = *q;
+    plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, po.gop_sizes[i]), options, po,
+                   &t.q, &t.plan);
     // The order is judged by the coded size: the estimate that ranks predictors within a
     // frame ignores the contexts, which favour some orders.
-    const double bits = double(encode_residuals(model, trial, &plan, options).size());
-    if (bits < best) {
-      best = bits;
-      best_plan = std::move(plan);
-      best_q.swap(trial);
-    }
-  }
+    t.bytes = encode_residuals(model, t.q, &t.plan, options).size();
+  });
+  keep_smallest(orders, &best);
   // Per-cluster predictors on the winning order, kept when they code smaller.
-  for (const ResidualPlanOptions::ClusterLayout& layout : po.cluster_layouts) {
-    std::vector<int32_t> trial(*q);
-    PredictorPlan plan = choose_cluster_plan(model, frames, radius, best_plan.order, layout.cluster_size,
-                                             layout.motion_block, po.max_candidates, &trial, options, po);
-    const double bits = double(encode_residuals(model, trial, &plan, options).size());
-    if (bits < best) {
-      best = bits;
-      best_plan = std::move(plan);
-      best_q.swap(trial);
-    }
-  }
-  q->swap(best_q);
-  return best_plan;
+  std::vector<Trial> layouts(po.cluster_layouts.size());
+  parallel_for(layouts.size(), po.threads, [&](size_t i) {
+    Trial& t = layouts[i];
+    t.q = *q;
+    const ResidualPlanOptions::ClusterLayout& layout = po.cluster_layouts[i];
+    t.plan = choose_cluster_plan(model, frames, radius, best.plan.order, layout.cluster_size, layout.motion_block,
+                                 po.max_candidates, &t.q, options, po);
+    t.bytes = encode_residuals(model, t.q, &t.plan, options).size();
+  });
+  keep_smallest(layouts, &best);
+  q->swap(best.q);
+  return best.plan;
 }
 
 }  // namespace dcurve

@@ -37,6 +37,9 @@ struct ResidualPlanOptions {
   };
   std::vector<ClusterLayout> cluster_layouts = {{8, 32}, {256, 1}};
   uint32_t max_candidates = 8;  // candidates a frame may keep, 1..16
+  // Threads for the independent trials (coding orders, cluster layouts); 0 = all cores.
+  // The result never depends on it.
+  int threads = 0;
 };
 
 // Estimated cost, bits, of coding `residuals` with an adaptive integer coder: their
