@@ -1,8 +1,8 @@
 #include "encoder/rate/cluster_plan.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <numeric>
 
 #include "codec/motion_compensation.h"
 #include "encoder/rate/plan_steps.h"
@@ -89,6 +89,9 @@ int32_t quantize(double v, int32_t limit) {
   const double r = std::nearbyint(v);
   return int32_t(std::max<double>(-limit, std::min<double>(limit, std::isfinite(r) ? r : 0)));
 }
+
+// Pool entries (candidate predictors of the frame) for axes 0, 1, 2.
+using Triple = std::array<uint32_t, 3>;
 
 }  // namespace
 
@@ -179,52 +182,55 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
       maps[b].emplace_back(r0, fit_motion(model.residual, input, q->data() + size_t(r0) * stride, trav, begin, end));
       return maps[b].back().second;
     };
-    std::vector<uint32_t> allowed(pool.size());
-    std::iota(allowed.begin(), allowed.end(), 0u);
-    std::vector<uint32_t> chosen(clusters, 0);
-    // Greedy over the clusters in decoding order; a second round when more candidates were
+    // A choice is a pool entry per axis; at first each entry on all three axes.
+    std::vector<Triple> allowed;
+    for (uint32_t c = 0; c < pool.size(); ++c) allowed.push_back({c, c, c});
+    std::vector<Triple> chosen(clusters);
+    // Greedy over the clusters in decoding order; a second round when more choices were
     // used than a frame may keep, restricted to the most used ones.
     std::vector<std::pair<int, int64_t>> frame_res;
     for (int round = 0; round < 2; ++round) {
       std::copy(orig.begin(), orig.end(), qf);
       frame_res.clear();
-      uint32_t prev = UINT32_MAX;
+      Triple prev = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
       MotionRow prev_row[3];
-      std::vector<std::vector<uint32_t>> paid(blocks);  // pool entries whose map the block has coded
+      std::vector<std::vector<Triple>> paid(blocks);  // choices whose map the block has coded
       for (uint32_t k = 0; k < clusters; ++k) {
-        const uint32_t begin = k * S, end = std::min(V, begin + S);
+        const uint32_t begin = k * S, end = std::min(V, begin + S), b = k / M;
         double best = HUGE_VAL;
-        for (uint32_t c : allowed) {
-          const PredictorChoice& pc = pool[c];
-          const PredictorChoice choice[3] = {pc, pc, pc};
-          double bits = allowed.size() < 2 ? 0 : c == prev ? 0.3 : 1 + std::log2(double(allowed.size()));
-          const bool motion = pc.kind == PredictorKind::Motion;
-          const uint32_t b = k / M;
-          const MotionTransform* map = motion ? &map_for(b, pc.r0) : nullptr;
-          int64_t centre[3];
-          const int32_t* ref = q->data() + size_t(pc.r0) * stride;
-          if (motion) {
+        // Estimated bits of choice t on cluster k (stops early beyond `bound`); per-axis
+        // bits of a complete evaluation go to axis_bits.
+        auto evaluate = [&](const Triple& t, double bound, double axis_bits[3]) {
+          const PredictorChoice choice[3] = {pool[t[0]], pool[t[1]], pool[t[2]]};
+          double bits = allowed.size() < 2 ? 0 : t == prev ? 0.3 : 1 + std::log2(double(allowed.size()));
+          MotionRow rows[3];
+          int64_t centre[3][3];
+          const int32_t* ref[3];
+          const bool map_paid = std::find(paid[b].begin(), paid[b].end(), t) != paid[b].end();
+          for (int a = 0; a < 3; ++a) {
+            ref[a] = q->data() + size_t(choice[a].r0) * stride;
+            if (choice[a].kind != PredictorKind::Motion) continue;
+            rows[a] = map_for(b, choice[a].r0).row[a];
             uint32_t block_begin, block_end;
             block_range(b, &block_begin, &block_end);
-            cluster_centre(ref, trav, block_begin, block_end, centre);
-          }
-          if (motion) {
+            cluster_centre(ref[a], trav, block_begin, block_end, centre[a]);
             // The map is coded once per block; charging only the first cluster that uses
             // it would never let a small cluster pay for it, so every user pays a share.
-            double map_bits = 0;
-            for (int a = 0; a < 3; ++a)
-              for (int e = 0; e < 4; ++e)
-                map_bits += 1 + residual_cost(int64_t(e < 3 ? map->row[a].m[e] : map->row[a].t) -
-                                              (e < 3 ? prev_row[a].m[e] : prev_row[a].t));
-            bits += map_bits * motion_share;
+            if (map_paid) continue;
+            for (int e = 0; e < 4; ++e)
+              bits += motion_share * (1 + residual_cost(int64_t(e < 3 ? rows[a].m[e] : rows[a].t) -
+                                                        (e < 3 ? prev_row[a].m[e] : prev_row[a].t)));
           }
-          const int64_t* bc = &base[size_t(c) * 3 * V];
           auto base_of = [&](uint32_t u, int a) -> int64_t {
-            if (motion) return motion_prediction(map->row[a], a, centre, ref + size_t(u) * 3);
-            return bc[size_t(a) * V + u];
+            if (choice[a].kind == PredictorKind::Motion)
+              return motion_prediction(rows[a], a, centre[a], ref[a] + size_t(u) * 3);
+            return base[(size_t(t[size_t(a)]) * 3 + size_t(a)) * V + u];
           };
+          std::fill(axis_bits, axis_bits + 3, HUGE_VAL);
+          double per_axis[3] = {0, 0, 0};
           trial_res.clear();
-          for (uint32_t pos = begin; pos < end && bits < best; ++pos) {
+          for (uint32_t pos = begin; pos < end; ++pos) {
+            if (bits >= bound) return bits;
             const uint32_t v = trav.order[pos];
             int32_t* qv = qf + size_t(v) * 3;
             std::copy(&orig[size_t(v) * 3], &orig[size_t(v) * 3] + 3, qv);
@@ -235,20 +241,43 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
             for (int a = 0; a < 3; ++a) {
               const int64_t r = int64_t(qv[a]) - pred[a];
               const int ctx = neighbour_class(trav, pos, a, magnitude) * 3 + std::min<uint8_t>(axis_max, 2);
-              bits += table.cost(ctx, r);
+              const double c = table.cost(ctx, r);
+              bits += c;
+              per_axis[a] += c;
               trial_res.emplace_back(ctx, r);
               magnitude[size_t(v) * 3 + size_t(a)] = uint8_t(std::min<int64_t>(r < 0 ? -r : r, 255));
               axis_max = std::max(axis_max, magnitude[size_t(v) * 3 + size_t(a)]);
             }
           }
-          if (bits < best) {
-            best = bits;
-            chosen[k] = c;
-            best_values.clear();
-            for (uint32_t pos = begin; pos < end; ++pos)
-              best_values.insert(best_values.end(), qf + size_t(trav.order[pos]) * 3, qf + size_t(trav.order[pos]) * 3 + 3);
-            best_res.swap(trial_res);
-          }
+          std::copy(per_axis, per_axis + 3, axis_bits);
+          return bits;
+        };
+        auto consider = [&](const Triple& t, double axis_bits[3]) {
+          const double bits = evaluate(t, best, axis_bits);
+          if (bits >= best) return;
+          best = bits;
+          chosen[k] = t;
+          best_values.clear();
+          for (uint32_t pos = begin; pos < end; ++pos)
+            best_values.insert(best_values.end(), qf + size_t(trav.order[pos]) * 3, qf + size_t(trav.order[pos]) * 3 + 3);
+          best_res.swap(trial_res);
+        };
+        // Per axis, the entry whose complete evaluation cost least there: their mix is
+        // tried too (the snapped grid point couples the axes, so it is evaluated anew).
+        double best_axis[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+        Triple mix = allowed[0];
+        for (const Triple& t : allowed) {
+          double axis_bits[3];
+          consider(t, axis_bits);
+          for (int a = 0; a < 3; ++a)
+            if (axis_bits[a] < best_axis[a]) {
+              best_axis[a] = axis_bits[a];
+              mix[size_t(a)] = t[size_t(a)];
+            }
+        }
+        if (round == 0 && std::find(allowed.begin(), allowed.end(), mix) == allowed.end()) {
+          double axis_bits[3];
+          consider(mix, axis_bits);
         }
         // Commit the winner: its values, and the magnitudes later contexts read.
         for (uint32_t pos = begin; pos < end; ++pos) {
@@ -260,42 +289,50 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
           }
         }
         prev = chosen[k];
-        const uint32_t b = k / M;
-        if (pool[prev].kind == PredictorKind::Motion && std::find(paid[b].begin(), paid[b].end(), prev) == paid[b].end()) {
-          paid[b].push_back(prev);
-          const MotionTransform& map = map_for(b, pool[prev].r0);
-          std::copy(map.row, map.row + 3, prev_row);
+        if (std::find(paid[b].begin(), paid[b].end(), prev) == paid[b].end()) {
+          bool motion = false;
+          for (int a = 0; a < 3; ++a)
+            if (pool[prev[size_t(a)]].kind == PredictorKind::Motion) {
+              motion = true;
+              prev_row[a] = map_for(b, pool[prev[size_t(a)]].r0).row[a];
+            }
+          if (motion) paid[b].push_back(prev);
         }
         frame_res.insert(frame_res.end(), best_res.begin(), best_res.end());
       }
-      std::vector<uint32_t> uses(pool.size(), 0);
-      for (uint32_t c : chosen) ++uses[c];
+      // The choices used, most used first.
+      std::vector<std::pair<Triple, uint32_t>> uses;
+      for (const Triple& t : chosen) {
+        auto it = std::find_if(uses.begin(), uses.end(), [&](const auto& u) { return u.first == t; });
+        if (it == uses.end()) uses.emplace_back(t, 1);
+        else ++it->second;
+      }
+      std::stable_sort(uses.begin(), uses.end(), [](const auto& x, const auto& y) { return x.second > y.second; });
       allowed.clear();
-      for (uint32_t c = 0; c < pool.size(); ++c)
-        if (uses[c]) allowed.push_back(c);
-      std::stable_sort(allowed.begin(), allowed.end(), [&](uint32_t a, uint32_t b) { return uses[a] > uses[b]; });
+      for (const auto& u : uses) allowed.push_back(u.first);
       if (allowed.size() <= max_candidates) break;
       allowed.resize(max_candidates);
     }
-    // The frame's candidates: the ones used, most used first (the second round never
+    // The frame's candidates: the choices used, most used first (the second round never
     // uses more than max_candidates, so the loop always ends through the break).
-    const std::vector<uint32_t>& used = allowed;
+    const std::vector<Triple>& used = allowed;
     FramePredictors& fp = plan.frames[f];
     bool any_motion = false;
-    for (uint32_t c : used) {
-      fp.candidates.push_back({pool[c], pool[c], pool[c]});
-      any_motion = any_motion || pool[c].kind == PredictorKind::Motion;
+    for (const Triple& t : used) {
+      fp.candidates.push_back({pool[t[0]], pool[t[1]], pool[t[2]]});
+      for (uint32_t c : t) any_motion = any_motion || pool[c].kind == PredictorKind::Motion;
     }
+    auto index_of = [&](const Triple& t) { return size_t(std::find(used.begin(), used.end(), t) - used.begin()); };
     if (used.size() > 1)
-      for (uint32_t c : chosen)
-        fp.cluster_candidate.push_back(uint8_t(std::find(used.begin(), used.end(), c) - used.begin()));
+      for (const Triple& t : chosen) fp.cluster_candidate.push_back(uint8_t(index_of(t)));
     if (any_motion) {
       fp.transforms.assign(size_t(blocks) * used.size(), MotionTransform());
-      for (uint32_t k = 0; k < clusters; ++k) {
-        const uint32_t c = chosen[k];
-        const size_t j = size_t(std::find(used.begin(), used.end(), c) - used.begin());
-        if (pool[c].kind == PredictorKind::Motion) fp.transforms[size_t(k / M) * used.size() + j] = map_for(k / M, pool[c].r0);
-      }
+      for (uint32_t k = 0; k < clusters; ++k)
+        for (int a = 0; a < 3; ++a) {
+          const PredictorChoice& c = pool[chosen[k][size_t(a)]];
+          if (c.kind == PredictorKind::Motion)
+            fp.transforms[size_t(k / M) * used.size() + index_of(chosen[k])].row[a] = map_for(k / M, c.r0).row[a];
+        }
     }
     for (const auto& [ctx, r] : frame_res) table.add(ctx, r);
     table.next_frame();
