@@ -35,7 +35,7 @@ struct ResidualPlanOptions {
   struct ClusterLayout {
     uint32_t cluster_size, motion_block;
   };
-  std::vector<ClusterLayout> cluster_layouts = {{8, 32}, {256, 1}};
+  std::vector<ClusterLayout> cluster_layouts = {{8, 32}, {512, 1}};
   uint32_t max_candidates = 8;  // candidates a frame may keep, 1..16
   // Threads for the independent trials (coding orders, cluster layouts); 0 = all cores.
   // The result never depends on it.
