@@ -76,7 +76,8 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
     base.resize(size_t(K) * stride);
     for (uint32_t j = 0; j < K; ++j)
       for (int a = 0; a < 3; ++a)
-        base_prediction(fp.candidates[j][size_t(a)], f, a, V, q, options, &base[(size_t(j) * 3 + size_t(a)) * V]);
+        if (fp.candidates[j][size_t(a)].kind == PredictorKind::Linear)  // the others are read in place
+          base_prediction(fp.candidates[j][size_t(a)], f, a, V, q, options, &base[(size_t(j) * 3 + size_t(a)) * V]);
     const uint32_t blocks = motion_block_count(V, plan), block_size = plan.motion_block;
     if (kDecode) {
       fp.cluster_candidate.assign(K > 1 ? clusters : 0, 0);
@@ -117,9 +118,15 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
       }
       for (int a = 0; a < 3; ++a) have_map[slot] |= choice[a].kind == PredictorKind::Motion;
       const int64_t* bj = &base[size_t(j) * stride];
+      const int32_t* model_f = options.model_prediction ? options.model_prediction->data() + size_t(f) * stride : nullptr;
       auto base_of = [&](uint32_t u, int a) -> int64_t {
-        if (choice[a].kind == PredictorKind::Motion)
-          return motion_prediction(rows[a], a, centre + 3 * a, ref[a] + size_t(u) * 3);
+        switch (choice[a].kind) {
+          case PredictorKind::None: return 0;
+          case PredictorKind::Reference: return ref[a][size_t(u) * 3 + size_t(a)];
+          case PredictorKind::Motion: return motion_prediction(rows[a], a, centre + 3 * a, ref[a] + size_t(u) * 3);
+          case PredictorKind::Model: return model_f[size_t(u) * 3 + size_t(a)];
+          case PredictorKind::Linear: break;
+        }
         return bj[size_t(a) * V + u];
       };
       for (uint32_t pos = begin; pos < end; ++pos) {
