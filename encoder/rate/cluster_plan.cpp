@@ -168,19 +168,23 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
     base.resize(pool.size() * stride);
     for (size_t c = 0; c < pool.size(); ++c)
       for (int a = 0; a < 3; ++a) base_prediction(pool[c], f, a, V, q->data(), options, &base[(c * 3 + size_t(a)) * V]);
-    // Motion maps per motion block and reference frame, fitted once.
-    auto block_range = [&](uint32_t b, uint32_t* begin, uint32_t* end) {
-      *begin = b * M * S;
-      *end = uint32_t(std::min<uint64_t>(V, (uint64_t(b) + 1) * M * S));
+    // Motion maps (and the block centres they apply around) per motion block and
+    // reference frame, computed once.
+    struct BlockMap {
+      uint32_t r0;
+      MotionTransform map;
+      int64_t centre[3];
     };
-    std::vector<std::vector<std::pair<uint32_t, MotionTransform>>> maps(blocks);
-    auto map_for = [&](uint32_t b, uint32_t r0) -> const MotionTransform& {
-      for (const auto& [r, t] : maps[b])
-        if (r == r0) return t;
-      uint32_t begin, end;
-      block_range(b, &begin, &end);
-      maps[b].emplace_back(r0, fit_motion(model.residual, input, q->data() + size_t(r0) * stride, trav, begin, end));
-      return maps[b].back().second;
+    std::vector<std::vector<BlockMap>> maps(blocks);
+    auto map_for = [&](uint32_t b, uint32_t r0) -> const BlockMap& {
+      for (const BlockMap& m : maps[b])
+        if (m.r0 == r0) return m;
+      const uint32_t begin = b * M * S, end = uint32_t(std::min<uint64_t>(V, (uint64_t(b) + 1) * M * S));
+      const int32_t* ref = q->data() + size_t(r0) * stride;
+      BlockMap m{r0, fit_motion(model.residual, input, ref, trav, begin, end), {}};
+      cluster_centre(ref, trav, begin, end, m.centre);
+      maps[b].push_back(m);
+      return maps[b].back();
     };
     // A choice is a pool entry per axis; at first each entry on all three axes.
     std::vector<Triple> allowed;
@@ -210,10 +214,9 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
           for (int a = 0; a < 3; ++a) {
             ref[a] = q->data() + size_t(choice[a].r0) * stride;
             if (choice[a].kind != PredictorKind::Motion) continue;
-            rows[a] = map_for(b, choice[a].r0).row[a];
-            uint32_t block_begin, block_end;
-            block_range(b, &block_begin, &block_end);
-            cluster_centre(ref[a], trav, block_begin, block_end, centre[a]);
+            const BlockMap& m = map_for(b, choice[a].r0);
+            rows[a] = m.map.row[a];
+            std::copy(m.centre, m.centre + 3, centre[a]);
             // The map is coded once per block; charging only the first cluster that uses
             // it would never let a small cluster pay for it, so every user pays a share.
             if (map_paid) continue;
@@ -294,7 +297,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
           for (int a = 0; a < 3; ++a)
             if (pool[prev[size_t(a)]].kind == PredictorKind::Motion) {
               motion = true;
-              prev_row[a] = map_for(b, pool[prev[size_t(a)]].r0).row[a];
+              prev_row[a] = map_for(b, pool[prev[size_t(a)]].r0).map.row[a];
             }
           if (motion) paid[b].push_back(prev);
         }
@@ -331,7 +334,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
         for (int a = 0; a < 3; ++a) {
           const PredictorChoice& c = pool[chosen[k][size_t(a)]];
           if (c.kind == PredictorKind::Motion)
-            fp.transforms[size_t(k / M) * used.size() + index_of(chosen[k])].row[a] = map_for(k / M, c.r0).row[a];
+            fp.transforms[size_t(k / M) * used.size() + index_of(chosen[k])].row[a] = map_for(k / M, c.r0).map.row[a];
         }
     }
     for (const auto& [ctx, r] : frame_res) table.add(ctx, r);
