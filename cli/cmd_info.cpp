@@ -147,6 +147,12 @@ void print_text(const nlohmann::json& j) {
       std::printf("  predictors per frame and axis: %s; spatial corrections: %s; %s coding order\n",
                   r["predictors"]["kind"].dump().c_str(), r["predictors"]["spatial"].dump().c_str(),
                   r["predictors"]["coding_order"].get<std::string>().c_str());
+    if (!r["predictors"].is_null())
+      std::printf("  clusters: %s of up to %s vertices; %s candidates over %s frames with several; "
+                  "per cluster and axis: %s; motion maps: %s\n",
+                  r["predictors"]["clusters"].dump().c_str(), r["predictors"]["cluster_size"].dump().c_str(),
+                  r["predictors"]["candidates"].dump().c_str(), r["predictors"]["clustered_frames"].dump().c_str(),
+                  r["predictors"]["cluster_kind"].dump().c_str(), r["predictors"]["motion_transforms"].dump().c_str());
   }
   else
     std::printf("  no residual layer: positions come from the motion model alone\n");

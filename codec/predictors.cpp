@@ -138,6 +138,7 @@ bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<ui
     case PredictorKind::Linear:
       return ok(c.r0) && ok(c.r1) && c.r0 != c.r1 && near(c.r0, f) && near(c.r1, c.r0);
     case PredictorKind::Model: return options.model_prediction != nullptr;
+    case PredictorKind::Motion: return ok(c.r0);
   }
   return false;
 }
@@ -149,7 +150,8 @@ void base_prediction(const PredictorChoice& c, uint32_t f, int axis, uint32_t V,
     case PredictorKind::None:
       std::fill(base, base + V, int64_t(0));
       return;
-    case PredictorKind::Reference: {
+    case PredictorKind::Reference:
+    case PredictorKind::Motion: {
       const int32_t* r = q + size_t(c.r0) * stride;
       for (uint32_t v = 0; v < V; ++v) base[v] = r[size_t(v) * 3 + a];
       return;

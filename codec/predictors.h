@@ -19,8 +19,10 @@ enum class PredictorKind : uint8_t {
                   // r0 = f-1, r1 = f-2 is constant velocity; r0 < f < r1 interpolates
   Model = 3,      // a grid prediction the caller supplies (the PDE motion model, evaluated
                   // on the grid by the integrator); both sides must supply the same values
+  Motion = 4,     // an affine map of q[r0][v], one per cluster of vertices, stored with the
+                  // cluster (codec/motion_compensation.h): rigid parts, repeated poses that moved
 };
-constexpr uint8_t kPredictorKindCount = 4;
+constexpr uint8_t kPredictorKindCount = 5;
 
 // Spatial correction added to the base prediction, from vertices of the same frame that
 // are already decoded: the error the base prediction made on them is assumed to repeat.
@@ -38,7 +40,7 @@ constexpr uint8_t kSpatialModeCount = 4;
 // The predictor of one (frame, axis).
 struct PredictorChoice {
   PredictorKind kind = PredictorKind::Reference;
-  uint32_t r0 = 0, r1 = 0;  // reference frames: Reference uses r0, Linear r0 and r1
+  uint32_t r0 = 0, r1 = 0;  // reference frames: Reference and Motion use r0, Linear r0 and r1
   SpatialMode spatial = SpatialMode::Parallelogram;
 };
 
@@ -79,8 +81,14 @@ struct ResidualOptions {
 bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
                       const ResidualOptions& options);
 
+// Whether the kind predicts from frame r0 (its residuals give the temporal context).
+inline bool has_reference(PredictorKind k) {
+  return k == PredictorKind::Reference || k == PredictorKind::Linear || k == PredictorKind::Motion;
+}
+
 // Writes the base prediction of frame f, axis a for every vertex into base[v] (grid units).
 // q is frame-major with V vertices and holds the referenced frames; the choice must be usable.
+// Motion writes the untransformed reference values (its map is per cluster, applied by the caller).
 void base_prediction(const PredictorChoice& c, uint32_t f, int axis, uint32_t V, const int32_t* q,
                      const ResidualOptions& options, int64_t* base);
 
@@ -93,11 +101,13 @@ inline int64_t rounded_mean(int64_t sum, int64_t count) {
 }  // namespace detail
 
 // The spatial correction of traversal position `pos` on `axis`: see SpatialMode. qf is
-// frame f's values (earlier positions decoded), base the base prediction of that axis.
-inline int64_t spatial_correction(SpatialMode mode, const Traversal& t, uint32_t pos, int axis,
-                                  const int32_t* qf, const int64_t* base) {
+// frame f's values (earlier positions decoded); base(u) the base prediction of vertex u on
+// that axis under this position's predictor.
+template <class Base>
+inline int64_t spatial_correction(SpatialMode mode, const Traversal& t, uint32_t pos, int axis, const int32_t* qf,
+                                  const Base& base) {
   if (mode == SpatialMode::Off) return 0;
-  auto err = [&](uint32_t n) { return int64_t(qf[size_t(n) * 3 + size_t(axis)]) - base[n]; };
+  auto err = [&](uint32_t n) { return int64_t(qf[size_t(n) * 3 + size_t(axis)]) - base(n); };
   int64_t mean_sum = 0, para_sum = 0;
   const uint32_t nb_begin = t.nb_offsets[pos], nb_end = t.nb_offsets[pos + 1];
   for (uint32_t k = nb_begin; k < nb_end; ++k) mean_sum += err(t.nb[k]);
@@ -112,14 +122,15 @@ inline int64_t spatial_correction(SpatialMode mode, const Traversal& t, uint32_t
   return detail::rounded_mean(mean_sum * para_count + para_sum * nb_count, 2 * nb_count * para_count);
 }
 
-// Predictions (grid units) of the three axes of traversal position `pos`: base holds the
-// three axes' base predictions (3 * V, axis-major), qf the frame's values decoded so far.
-inline void vertex_prediction(const PredictorChoice* choice, const Traversal& t, uint32_t pos, uint32_t V,
-                              const int32_t* qf, const int64_t* base, int64_t pred[3]) {
+// Predictions (grid units) of the three axes of traversal position `pos`: base(u, a) is
+// vertex u's base prediction on axis a, qf the frame's values decoded so far.
+template <class Base>
+inline void vertex_prediction(const PredictorChoice* choice, const Traversal& t, uint32_t pos, const int32_t* qf,
+                              const Base& base, int64_t pred[3]) {
   const uint32_t v = t.order[pos];
   for (int a = 0; a < 3; ++a) {
-    const int64_t* ba = base + size_t(a) * V;
-    pred[a] = ba[v] + spatial_correction(choice[a].spatial, t, pos, a, qf, ba);
+    auto ba = [&](uint32_t u) { return base(u, a); };
+    pred[a] = ba(v) + spatial_correction(choice[a].spatial, t, pos, a, qf, ba);
   }
 }
 

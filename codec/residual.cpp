@@ -1,6 +1,7 @@
 #include "codec/residual.h"
 
 #include <algorithm>
+#include <array>
 
 #include "codec/bytes.h"
 #include "codec/crc32.h"
@@ -11,7 +12,7 @@
 namespace dcurve {
 namespace {
 
-constexpr uint8_t kFormatVersion = 1;
+constexpr uint8_t kFormatVersion = 2;
 // A plan entry byte: predictor kind in bits 0-3, spatial mode in bits 4-5.
 constexpr int kSpatialShift = 4;
 
@@ -35,71 +36,218 @@ int sign3(int64_t v) { return v < 0 ? 0 : v == 0 ? 1 : 2; }
 // Residuals are kept, clamped to a byte, for the contexts of later vertices and frames.
 int8_t clamp8(int64_t r) { return int8_t(r < -127 ? -127 : r > 127 ? 127 : r); }
 
-// Walks the frames in decoding order, calling step(ctx, &r) for every residual r. When
-// decoding, step writes r and the walker fills q; otherwise the walker computes r from q
-// and step codes or records it. One body for all uses so they cannot drift apart.
-template <bool kDecode, class Step>
-bool walk_frames(const Model& model, const Traversal& trav, const PredictorPlan& plan,
-                 const ResidualOptions& options, int32_t* q, Step step) {
+// Which candidate each cluster uses and the motion maps are coded in the stream, at the
+// start of the cluster: an index (a "same as the previous cluster" flag, then the index
+// among the others in fixed-length binary with a tree of contexts) and, per Motion axis,
+// the four numbers of its row as differences to the previous row coded for that axis in
+// this frame (neighbouring patches move alike).
+struct SideModels {
+  BitModel same;
+  std::array<BitModel, 32> index_tree;
+  AdaptiveIntCoder params{3, 1};  // contexts: diagonal, off-diagonal, translation
+};
+// Context of entry e (0..2 matrix column, 3 translation) of the row of `axis`.
+int param_context(int e, int axis) { return e == 3 ? 2 : e == axis ? 0 : 1; }
+
+int index_bits(uint32_t others) {
+  int b = 0;
+  while ((uint32_t(1) << b) < others) ++b;
+  return b;
+}
+
+// Walks the frames in decoding order, calling coder.residual(ctx, sign_ctx, &r) for every
+// residual r, coder.index(K, previous, &j) at every cluster of a frame with K > 1
+// candidates and coder.row(previous, &row) for every Motion axis of the cluster. When
+// decoding, the coder writes r, j and the rows (the walker fills q and plan); otherwise the
+// walker computes r from q and the coder codes or records it. One body for all uses so
+// they cannot drift apart.
+template <bool kDecode, class Coder>
+bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan, const ResidualOptions& options,
+                 int32_t* q, Coder& coder) {
   const uint32_t V = model.meta.vertex_count;
+  const uint32_t S = plan.cluster_size, clusters = cluster_count(V, S);
   const size_t stride = size_t(V) * 3;
-  std::vector<int64_t> base(stride);
+  std::vector<int64_t> base;
   std::vector<int8_t> res(stride * plan.order.size(), 0);
   const int8_t* previous = nullptr;  // residuals of the frame coded last
   for (uint32_t f : plan.order) {
-    const PredictorChoice* choice = &plan.choices[size_t(f) * 3];
-    for (int a = 0; a < 3; ++a) base_prediction(choice[a], f, a, V, q, options, &base[size_t(a) * V]);
+    FramePredictors& fp = plan.frames[f];
+    const uint32_t K = uint32_t(fp.candidates.size());
+    base.resize(size_t(K) * stride);
+    for (uint32_t j = 0; j < K; ++j)
+      for (int a = 0; a < 3; ++a)
+        if (fp.candidates[j][size_t(a)].kind == PredictorKind::Linear)  // the others are read in place
+          base_prediction(fp.candidates[j][size_t(a)], f, a, V, q, options, &base[(size_t(j) * 3 + size_t(a)) * V]);
+    const uint32_t blocks = motion_block_count(V, plan), block_size = plan.motion_block;
+    if (kDecode) {
+      fp.cluster_candidate.assign(K > 1 ? clusters : 0, 0);
+      fp.transforms.assign(size_t(blocks) * K, MotionTransform());
+    }
+    std::vector<uint8_t> have_map(size_t(blocks) * K, 0);  // the map was coded already
+    std::vector<std::array<int64_t, 9>> centres(size_t(blocks) * K);
     int32_t* qf = q + size_t(f) * stride;
     int8_t* rf = &res[size_t(f) * stride];
-    const int8_t* source[3];
-    for (int a = 0; a < 3; ++a) {
-      const PredictorChoice& c = choice[a];
-      const bool has_ref = c.kind == PredictorKind::Reference || c.kind == PredictorKind::Linear;
-      source[a] = has_ref ? &res[size_t(c.r0) * stride] : previous;
-    }
-    for (uint32_t pos = 0; pos < V; ++pos) {
-      const uint32_t v = trav.order[pos];
-      const uint32_t nb_begin = trav.nb_offsets[pos], nb_end = trav.nb_offsets[pos + 1];
-      uint32_t axis_max = 0;
-      int64_t preds[3];
-      vertex_prediction(choice, trav, pos, V, qf, base.data(), preds);
+    uint32_t prev_j = 0;
+    MotionRow prev_row[3];
+    for (uint32_t k = 0; k < clusters; ++k) {
+      const uint32_t begin = k * S, end = std::min(V, begin + S);
+      uint32_t j = fp.cluster_candidate.empty() ? 0 : fp.cluster_candidate[k];
+      if (K > 1) {
+        if (!coder.index(K, prev_j, &j)) return false;
+        if (kDecode) fp.cluster_candidate[k] = uint8_t(j);
+      }
+      prev_j = j;
+      const PredictorChoice* choice = fp.candidates[j].data();
+      const uint32_t block = k / block_size;
+      const size_t slot = size_t(block) * K + j;
+      const MotionRow* rows = fp.transforms.empty() ? nullptr : fp.transforms[slot].row;
+      const int64_t* centre = centres[slot].data();
+      const int32_t* ref[3];
+      const int8_t* source[3];
       for (int a = 0; a < 3; ++a) {
-        const int64_t pred = preds[a];
-        int nb_class = kNeighbourClasses - 1;
-        int nb_sum = 0;
-        if (nb_begin != nb_end) {
-          uint32_t sum = 0;
-          for (uint32_t k = nb_begin; k < nb_end; ++k) {
-            const int n = rf[size_t(trav.nb[k]) * 3 + size_t(a)];
-            sum += uint32_t(n < 0 ? -n : n);
-            nb_sum += n;
+        const PredictorChoice& c = choice[a];
+        source[a] = has_reference(c.kind) ? &res[size_t(c.r0) * stride] : previous;
+        ref[a] = q + size_t(c.r0) * stride;
+        if (c.kind != PredictorKind::Motion || have_map[slot]) continue;
+        MotionRow& row = fp.transforms[slot].row[a];
+        if (!coder.row(a, prev_row[a], &row)) return false;
+        prev_row[a] = row;
+        const uint32_t block_begin = block * block_size * S;
+        const uint32_t block_end = uint32_t(std::min<uint64_t>(V, (uint64_t(block) + 1) * block_size * S));
+        cluster_centre(ref[a], trav, block_begin, block_end, &centres[slot][size_t(a) * 3]);
+      }
+      for (int a = 0; a < 3; ++a) have_map[slot] |= choice[a].kind == PredictorKind::Motion;
+      const int64_t* bj = &base[size_t(j) * stride];
+      const int32_t* model_f = options.model_prediction ? options.model_prediction->data() + size_t(f) * stride : nullptr;
+      auto base_of = [&](uint32_t u, int a) -> int64_t {
+        switch (choice[a].kind) {
+          case PredictorKind::None: return 0;
+          case PredictorKind::Reference: return ref[a][size_t(u) * 3 + size_t(a)];
+          case PredictorKind::Motion: return motion_prediction(rows[a], a, centre + 3 * a, ref[a] + size_t(u) * 3);
+          case PredictorKind::Model: return model_f[size_t(u) * 3 + size_t(a)];
+          case PredictorKind::Linear: break;
+        }
+        return bj[size_t(a) * V + u];
+      };
+      for (uint32_t pos = begin; pos < end; ++pos) {
+        const uint32_t v = trav.order[pos];
+        const uint32_t nb_begin = trav.nb_offsets[pos], nb_end = trav.nb_offsets[pos + 1];
+        uint32_t axis_max = 0;
+        int64_t preds[3];
+        vertex_prediction(choice, trav, pos, qf, base_of, preds);
+        for (int a = 0; a < 3; ++a) {
+          const int64_t pred = preds[a];
+          int nb_class = kNeighbourClasses - 1;
+          int nb_sum = 0;
+          if (nb_begin != nb_end) {
+            uint32_t sum = 0;
+            for (uint32_t n = nb_begin; n < nb_end; ++n) {
+              const int r = rf[size_t(trav.nb[n]) * 3 + size_t(a)];
+              sum += uint32_t(r < 0 ? -r : r);
+              nb_sum += r;
+            }
+            nb_class = magnitude_class((sum + (nb_end - nb_begin) - 1) / (nb_end - nb_begin));
           }
-          nb_class = magnitude_class((sum + (nb_end - nb_begin) - 1) / (nb_end - nb_begin));
+          const size_t i = size_t(v) * 3 + size_t(a);
+          const int t = source[a] ? source[a][i] : 0;
+          const int t_class = std::min(magnitude_class(uint32_t(t < 0 ? -t : t)), kTemporalClasses - 1);
+          const int a_class = a == 0 ? kAxisClasses - 1 : std::min(magnitude_class(axis_max), kAxisClasses - 2);
+          const int ctx = (nb_class * kTemporalClasses + t_class) * kAxisClasses + a_class;
+          const int sign_ctx = sign3(t) * 3 + sign3(nb_sum);
+          int64_t r;
+          if constexpr (kDecode) {
+            if (!coder.residual(ctx, sign_ctx, &r)) return false;
+            const int64_t value = pred + r;
+            if (value < INT32_MIN || value > INT32_MAX) return false;
+            qf[i] = int32_t(value);
+          } else {
+            r = int64_t(qf[i]) - pred;
+            coder.residual(ctx, sign_ctx, &r);
+          }
+          rf[i] = clamp8(r);
+          axis_max = std::max(axis_max, uint32_t(rf[i] < 0 ? -rf[i] : rf[i]));
         }
-        const size_t i = size_t(v) * 3 + size_t(a);
-        const int t = source[a] ? source[a][i] : 0;
-        const int t_class = std::min(magnitude_class(uint32_t(t < 0 ? -t : t)), kTemporalClasses - 1);
-        const int a_class = a == 0 ? kAxisClasses - 1 : std::min(magnitude_class(axis_max), kAxisClasses - 2);
-        const int ctx = (nb_class * kTemporalClasses + t_class) * kAxisClasses + a_class;
-        const int sign_ctx = sign3(t) * 3 + sign3(nb_sum);
-        int64_t r;
-        if constexpr (kDecode) {
-          if (!step(ctx, sign_ctx, &r)) return false;
-          const int64_t value = pred + r;
-          if (value < INT32_MIN || value > INT32_MAX) return false;
-          qf[i] = int32_t(value);
-        } else {
-          r = int64_t(qf[i]) - pred;
-          step(ctx, sign_ctx, &r);
-        }
-        rf[i] = clamp8(r);
-        axis_max = std::max(axis_max, uint32_t(rf[i] < 0 ? -rf[i] : rf[i]));
       }
     }
     previous = rf;
   }
   return true;
 }
+
+// The coders walk_frames drives: writing the range-coded stream, reading it, recording
+// the residuals.
+struct StreamWriter {
+  RangeEncoder enc;
+  AdaptiveIntCoder ints{kContexts, kSignContexts};
+  SideModels side;
+  bool residual(int ctx, int sign_ctx, int64_t* r) {
+    ints.encode(enc, ctx, sign_ctx, *r);
+    return true;
+  }
+  bool index(uint32_t K, uint32_t prev, uint32_t* j) {
+    enc.encode(side.same, *j == prev);
+    if (*j == prev) return true;
+    const uint32_t x = *j < prev ? *j : *j - 1;
+    const int bits = index_bits(K - 1);
+    for (int b = bits - 1, node = 1; b >= 0; --b) {
+      const int bit = int(x >> b & 1);
+      enc.encode(side.index_tree[size_t(node)], bit);
+      node = 2 * node + bit;
+    }
+    return true;
+  }
+  bool row(int axis, const MotionRow& prev, MotionRow* row) {
+    for (int e = 0; e < 4; ++e) {
+      const int32_t value = e < 3 ? row->m[e] : row->t, before = e < 3 ? prev.m[e] : prev.t;
+      side.params.encode(enc, param_context(e, axis), 0, int64_t(value) - before);
+    }
+    return true;
+  }
+};
+
+struct StreamReader {
+  RangeDecoder dec;
+  AdaptiveIntCoder ints{kContexts, kSignContexts};
+  SideModels side;
+  StreamReader(const uint8_t* data, size_t size) : dec(data, size) {}
+  bool residual(int ctx, int sign_ctx, int64_t* r) {
+    *r = ints.decode(dec, ctx, sign_ctx);
+    return !dec.overrun();
+  }
+  bool index(uint32_t K, uint32_t prev, uint32_t* j) {
+    if (dec.decode(side.same)) {
+      *j = prev;
+      return !dec.overrun();
+    }
+    uint32_t x = 0;
+    for (int b = index_bits(K - 1), node = 1; b > 0; --b) {
+      const int bit = dec.decode(side.index_tree[size_t(node)]);
+      x = x << 1 | uint32_t(bit);
+      node = 2 * node + bit;
+    }
+    if (x >= K - 1) return false;
+    *j = x < prev ? x : x + 1;
+    return !dec.overrun();
+  }
+  bool row(int axis, const MotionRow& prev, MotionRow* row) {
+    for (int e = 0; e < 4; ++e) {
+      const int64_t value = int64_t(e < 3 ? prev.m[e] : prev.t) + side.params.decode(dec, param_context(e, axis), 0);
+      if (value < -kMaxMotionShift || value > kMaxMotionShift) return false;
+      (e < 3 ? row->m[e] : row->t) = int32_t(value);
+    }
+    return motion_row_valid(*row) && !dec.overrun();
+  }
+};
+
+struct ResidualRecorder {
+  std::vector<int64_t>* out;
+  bool residual(int, int, int64_t* r) {
+    out->push_back(*r);
+    return true;
+  }
+  bool index(uint32_t, uint32_t, uint32_t*) { return true; }
+  bool row(int, const MotionRow&, MotionRow*) { return true; }
+};
 
 // CRC-32C of the values as little-endian int32, so a corrupted stream that still decodes
 // to in-range values is caught.
@@ -119,27 +267,50 @@ uint32_t values_checksum(const std::vector<int32_t>& q) {
 
 }  // namespace
 
-PredictorPlan default_predictor_plan(uint32_t frame_count) {
+PredictorPlan uniform_plan(const std::vector<uint32_t>& order, const std::vector<PredictorChoice>& choices) {
   PredictorPlan plan;
-  plan.choices.resize(size_t(frame_count) * 3);
+  plan.order = order;
+  plan.frames.resize(choices.size() / 3);
+  for (size_t f = 0; f < plan.frames.size(); ++f)
+    plan.frames[f].candidates = {{choices[f * 3], choices[f * 3 + 1], choices[f * 3 + 2]}};
+  return plan;
+}
+
+PredictorPlan default_predictor_plan(uint32_t frame_count) {
+  std::vector<PredictorChoice> choices(size_t(frame_count) * 3);
+  std::vector<uint32_t> order;
   for (uint32_t f = 0; f < frame_count; ++f) {
-    plan.order.push_back(f);
+    order.push_back(f);
     for (int a = 0; a < 3; ++a) {
-      PredictorChoice& c = plan.choices[size_t(f) * 3 + size_t(a)];
+      PredictorChoice& c = choices[size_t(f) * 3 + size_t(a)];
       if (f == 0) c.kind = PredictorKind::None;
       else c.r0 = f - 1;
     }
   }
-  return plan;
+  return uniform_plan(order, choices);
 }
 
-bool plan_is_valid(const PredictorPlan& plan, uint32_t F, const ResidualOptions& options) {
-  if (plan.order.size() != F || plan.choices.size() != size_t(F) * 3) return false;
+bool plan_is_valid(const PredictorPlan& plan, uint32_t F, uint32_t V, const ResidualOptions& options) {
+  if (plan.order.size() != F || plan.frames.size() != F || plan.cluster_size == 0 || plan.motion_block == 0)
+    return false;
+  const uint32_t clusters = cluster_count(V, plan.cluster_size), blocks = motion_block_count(V, plan);
   std::vector<uint8_t> decoded(F, 0);
   for (uint32_t f : plan.order) {
     if (f >= F || decoded[f]) return false;
-    for (int a = 0; a < 3; ++a)
-      if (!predictor_usable(plan.choices[size_t(f) * 3 + size_t(a)], f, decoded, options)) return false;
+    const FramePredictors& fp = plan.frames[f];
+    if (fp.candidates.empty() || fp.candidates.size() > kMaxCandidates) return false;
+    if (!fp.cluster_candidate.empty() && fp.cluster_candidate.size() != clusters) return false;
+    for (uint8_t j : fp.cluster_candidate)
+      if (j >= fp.candidates.size()) return false;
+    for (const auto& candidate : fp.candidates)
+      for (const PredictorChoice& c : candidate) {
+        if (!predictor_usable(c, f, decoded, options)) return false;
+        if (c.kind == PredictorKind::Motion && fp.transforms.size() != size_t(blocks) * fp.candidates.size())
+          return false;
+      }
+    for (const MotionTransform& t : fp.transforms)
+      for (const MotionRow& row : t.row)
+        if (!motion_row_valid(row)) return false;
     decoded[f] = 1;
   }
   return true;
@@ -158,9 +329,8 @@ uint32_t read_ref(ByteReader& r, uint32_t f) {
 std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
                                       const PredictorPlan* plan, const ResidualOptions& options) {
   const uint32_t F = model.meta.frame_count;
-  const PredictorPlan fallback = plan ? PredictorPlan() : default_predictor_plan(F);
-  const PredictorPlan& p = plan ? *plan : fallback;
-  if (!plan_is_valid(p, F, options)) return {};
+  PredictorPlan p = plan ? *plan : default_predictor_plan(F);
+  if (!plan_is_valid(p, F, model.meta.vertex_count, options)) return {};
   if (q.size() != size_t(model.meta.vertex_count) * 3 * F ||
       (options.model_prediction && options.model_prediction->size() != q.size()))
     return {};
@@ -169,25 +339,24 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
   w.u8(kFormatVersion);
   w.u8(trav.from_faces ? 1 : 0);
   w.u32(values_checksum(q));
+  w.varint(p.cluster_size);
+  w.varint(p.motion_block);
   uint32_t expect = 0;  // time order costs one byte per frame: delta to the expected frame
   for (uint32_t f : p.order) {
     write_ref(w, expect, f);
     expect = f + 1;
-    for (int a = 0; a < 3; ++a) {
-      const PredictorChoice& c = p.choices[size_t(f) * 3 + size_t(a)];
-      w.u8(uint8_t(uint8_t(c.kind) | uint8_t(c.spatial) << kSpatialShift));
-      if (c.kind == PredictorKind::Reference || c.kind == PredictorKind::Linear) write_ref(w, f, c.r0);
-      if (c.kind == PredictorKind::Linear) write_ref(w, f, c.r1);
-    }
+    w.u8(uint8_t(p.frames[f].candidates.size()));
+    for (const auto& candidate : p.frames[f].candidates)
+      for (const PredictorChoice& c : candidate) {
+        w.u8(uint8_t(uint8_t(c.kind) | uint8_t(c.spatial) << kSpatialShift));
+        if (has_reference(c.kind)) write_ref(w, f, c.r0);
+        if (c.kind == PredictorKind::Linear) write_ref(w, f, c.r1);
+      }
   }
-  RangeEncoder enc;
-  AdaptiveIntCoder ints(kContexts, kSignContexts);
+  StreamWriter coder;
   std::vector<int32_t> work(q);  // the walker takes a mutable pointer, shared with decoding
-  walk_frames<false>(model, trav, p, options, work.data(), [&](int ctx, int sign_ctx, int64_t* r) {
-    ints.encode(enc, ctx, sign_ctx, *r);
-    return true;
-  });
-  const std::vector<uint8_t>& stream = enc.finish();
+  walk_frames<false>(model, trav, p, options, work.data(), coder);
+  const std::vector<uint8_t>& stream = coder.enc.finish();
   w.varint(stream.size());
   w.bytes(stream.data(), stream.size());
   return std::move(w.data());
@@ -201,12 +370,17 @@ bool read_header(const Model& model, const ResidualOptions& options, ByteReader&
   const uint8_t version = r.u8();
   const uint8_t from_faces = r.u8();
   *checksum = r.u32();
+  const uint64_t cluster_size = r.varint(), motion_block = r.varint();
   if (!r.ok) return fail(error, "residual stream is truncated");
   if (version != kFormatVersion) return fail(error, "residual stream version " + std::to_string(version) + " is not supported");
   if (from_faces != (model.faces.empty() ? 0 : 1))
     return fail(error, "residual stream was coded with a different neighbour structure (faces present or not)");
+  if (cluster_size == 0 || cluster_size > UINT32_MAX || motion_block == 0 || motion_block > UINT32_MAX)
+    return fail(error, "residual cluster size or motion block is out of range");
+  plan->cluster_size = uint32_t(cluster_size);
+  plan->motion_block = uint32_t(motion_block);
   plan->order.clear();
-  plan->choices.assign(size_t(F) * 3, PredictorChoice());
+  plan->frames.assign(F, FramePredictors());
   std::vector<uint8_t> decoded(F, 0);
   uint32_t expect = 0;
   for (uint32_t k = 0; k < F; ++k) {
@@ -214,29 +388,58 @@ bool read_header(const Model& model, const ResidualOptions& options, ByteReader&
     if (!r.ok || f >= F || decoded[f]) return fail(error, "residual frame order is not a permutation of the frames");
     plan->order.push_back(f);
     expect = f + 1;
-    for (int a = 0; a < 3; ++a) {
-      PredictorChoice& c = plan->choices[size_t(f) * 3 + size_t(a)];
-      const uint8_t b = r.u8();
-      const uint8_t kind = b & 0x0F, spatial = uint8_t(b >> kSpatialShift);
-      if (!r.ok || kind >= kPredictorKindCount || spatial >= kSpatialModeCount)
-        return fail(error, "residual predictor table is malformed");
-      c.kind = PredictorKind(kind);
-      c.spatial = SpatialMode(spatial);
-      if (c.kind == PredictorKind::Reference || c.kind == PredictorKind::Linear) c.r0 = read_ref(r, f);
-      if (c.kind == PredictorKind::Linear) c.r1 = read_ref(r, f);
-      if (!r.ok || !predictor_usable(c, f, decoded, options))
-        return fail(error, c.kind == PredictorKind::Model && r.ok
-                               ? "residual stream needs the motion model prediction, which was not supplied"
-                               : "residual predictor table refers to an unavailable frame");
-    }
+    const uint8_t count = r.u8();
+    if (!r.ok || count == 0 || count > kMaxCandidates) return fail(error, "residual candidate count is out of range");
+    plan->frames[f].candidates.resize(count);
+    for (auto& candidate : plan->frames[f].candidates)
+      for (PredictorChoice& c : candidate) {
+        const uint8_t b = r.u8();
+        const uint8_t kind = b & 0x0F, spatial = uint8_t(b >> kSpatialShift);
+        if (!r.ok || kind >= kPredictorKindCount || spatial >= kSpatialModeCount)
+          return fail(error, "residual predictor table is malformed");
+        c.kind = PredictorKind(kind);
+        c.spatial = SpatialMode(spatial);
+        if (has_reference(c.kind)) c.r0 = read_ref(r, f);
+        if (c.kind == PredictorKind::Linear) c.r1 = read_ref(r, f);
+        if (!r.ok || !predictor_usable(c, f, decoded, options))
+          return fail(error, c.kind == PredictorKind::Model && r.ok
+                                 ? "residual stream needs the motion model prediction, which was not supplied"
+                                 : "residual predictor table refers to an unavailable frame");
+      }
     decoded[f] = 1;
   }
+  return true;
+}
+
+// Decodes the whole payload into q, filling plan (with its per-cluster choices).
+bool decode_all(const Model& model, std::vector<int32_t>* q, PredictorPlan* plan, std::string* error,
+                const ResidualOptions& options) {
+  const size_t total = size_t(model.meta.vertex_count) * 3 * model.meta.frame_count;
+  if (options.model_prediction && options.model_prediction->size() != total)
+    return fail(error, "model prediction has the wrong number of values");
+  ByteReader r(model.residual.payload.data(), model.residual.payload.size());
+  uint32_t checksum;
+  if (!read_header(model, options, r, plan, &checksum, error)) return false;
+  const uint64_t stream_size = r.varint();
+  if (!r.ok || stream_size != r.remaining()) return fail(error, "residual stream length does not match the payload");
+  const uint8_t* stream = r.take(size_t(stream_size));
+  const Traversal trav = build_traversal(model);
+  q->assign(total, 0);
+  StreamReader coder(stream, size_t(stream_size));
+  const bool ok = walk_frames<true>(model, trav, *plan, options, q->data(), coder);
+  if (!ok || !coder.dec.at_clean_end())
+    return fail(error, "residual stream is truncated, corrupted or decodes out of range");
+  if (values_checksum(*q) != checksum) return fail(error, "residual stream is corrupted (checksum mismatch)");
   return true;
 }
 }  // namespace
 
 bool decode_predictor_plan(const Model& model, PredictorPlan* plan, std::string* error,
-                           const ResidualOptions& options) {
+                           const ResidualOptions& options, bool with_clusters) {
+  if (with_clusters) {
+    std::vector<int32_t> q;
+    return decode_all(model, &q, plan, error, options);
+  }
   ByteReader r(model.residual.payload.data(), model.residual.payload.size());
   uint32_t checksum;
   return read_header(model, options, r, plan, &checksum, error);
@@ -244,28 +447,8 @@ bool decode_predictor_plan(const Model& model, PredictorPlan* plan, std::string*
 
 bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
                       const ResidualOptions& options) {
-  const size_t total = size_t(model.meta.vertex_count) * 3 * model.meta.frame_count;
-  if (options.model_prediction && options.model_prediction->size() != total)
-    return fail(error, "model prediction has the wrong number of values");
-  ByteReader r(model.residual.payload.data(), model.residual.payload.size());
   PredictorPlan plan;
-  uint32_t checksum;
-  if (!read_header(model, options, r, &plan, &checksum, error)) return false;
-  const uint64_t stream_size = r.varint();
-  if (!r.ok || stream_size != r.remaining()) return fail(error, "residual stream length does not match the payload");
-  const uint8_t* stream = r.take(size_t(stream_size));
-  const Traversal trav = build_traversal(model);
-  q->assign(total, 0);
-  RangeDecoder dec(stream, size_t(stream_size));
-  AdaptiveIntCoder ints(kContexts, kSignContexts);
-  const bool ok = walk_frames<true>(model, trav, plan, options, q->data(), [&](int ctx, int sign_ctx, int64_t* r) {
-    *r = ints.decode(dec, ctx, sign_ctx);
-    return !dec.overrun();
-  });
-  if (!ok || !dec.at_clean_end())
-    return fail(error, "residual stream is truncated, corrupted or decodes out of range");
-  if (values_checksum(*q) != checksum) return fail(error, "residual stream is corrupted (checksum mismatch)");
-  return true;
+  return decode_all(model, q, &plan, error, options);
 }
 
 std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
@@ -273,10 +456,9 @@ std::vector<int64_t> residual_values(const Model& model, const std::vector<int32
   std::vector<int64_t> out;
   out.reserve(q.size());
   std::vector<int32_t> work(q);
-  walk_frames<false>(model, build_traversal(model), plan, options, work.data(), [&](int, int, int64_t* r) {
-    out.push_back(*r);
-    return true;
-  });
+  PredictorPlan p = plan;
+  ResidualRecorder recorder{&out};
+  walk_frames<false>(model, build_traversal(model), p, options, work.data(), recorder);
   return out;
 }
 

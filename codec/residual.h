@@ -5,27 +5,62 @@
 //
 // Grid positions are laid out frame-major: q[(f * V + v) * 3 + axis].
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "codec/model.h"
+#include "codec/motion_compensation.h"
 #include "codec/predictors.h"
 
 namespace dcurve {
 
-// How frames are coded: in which order, each axis with which predictor.
-struct PredictorPlan {
-  std::vector<uint32_t> order;           // a permutation of [0, frame_count): coding order
-  std::vector<PredictorChoice> choices;  // entry f * 3 + axis (indexed by frame, not position)
+// The predictors of one frame. Vertices are split into clusters of cluster_size
+// consecutive traversal positions (breadth-first over the mesh, so each is a patch); every
+// cluster uses one of the frame's candidates.
+struct FramePredictors {
+  std::vector<std::array<PredictorChoice, 3>> candidates;  // 1..kMaxCandidates, one predictor per axis
+  std::vector<uint8_t> cluster_candidate;  // per cluster, index into candidates; empty: all 0
+  // Motion maps, one per (motion block, candidate): entry block * candidates.size() + j,
+  // the rows of candidate j's Motion axes (other rows unused). Empty when no candidate
+  // uses Motion.
+  std::vector<MotionTransform> transforms;
 };
+constexpr uint32_t kMaxCandidates = 16;
+
+// How frames are coded: in which order, each cluster and axis with which predictor.
+struct PredictorPlan {
+  std::vector<uint32_t> order;  // a permutation of [0, frame_count): coding order
+  uint32_t cluster_size = UINT32_MAX;  // traversal positions per cluster, >= 1
+  // Clusters per motion block, >= 1: a Motion candidate's map is shared by the clusters of
+  // a block (maps cost a dozen numbers, so they cover more vertices than a choice does).
+  uint32_t motion_block = 1;
+  std::vector<FramePredictors> frames;  // indexed by frame, not position
+};
+
+// Number of clusters of V vertices: ceil(V / cluster_size) (cluster_size >= 1).
+inline uint32_t cluster_count(uint32_t V, uint32_t cluster_size) {
+  return cluster_size == 0 ? 0 : uint32_t((uint64_t(V) + cluster_size - 1) / cluster_size);
+}
+
+// Number of motion blocks of a frame with V vertices.
+inline uint32_t motion_block_count(uint32_t V, const PredictorPlan& plan) {
+  const uint32_t clusters = cluster_count(V, plan.cluster_size);
+  return plan.motion_block == 0 ? 0 : uint32_t((uint64_t(clusters) + plan.motion_block - 1) / plan.motion_block);
+}
+
+// A plan with one candidate per frame (choices: entry f * 3 + axis) and one cluster.
+PredictorPlan uniform_plan(const std::vector<uint32_t>& order, const std::vector<PredictorChoice>& choices);
 
 // The plan used when the caller has none: time order, frame 0 from its mesh neighbours,
 // every later frame as the previous frame plus the neighbours' motion.
 PredictorPlan default_predictor_plan(uint32_t frame_count);
 
-// Whether `plan` fits frame_count and every choice refers only to frames coded before it.
-bool plan_is_valid(const PredictorPlan& plan, uint32_t frame_count, const ResidualOptions& options);
+// Whether `plan` fits the model's counts, every choice refers only to frames coded before
+// it, cluster indices and motion maps are in range.
+bool plan_is_valid(const PredictorPlan& plan, uint32_t frame_count, uint32_t vertex_count,
+                   const ResidualOptions& options);
 
 // Codes the grid positions `q` (frame_count * vertex_count * 3 values, each an int32) of
 // `model` into a payload for model.residual.payload. `model` supplies counts, faces (the
@@ -42,9 +77,11 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
 bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
                       const ResidualOptions& options = {});
 
-// Reads only the predictor table of model.residual.payload (for reports and tools).
+// Reads the predictor table of model.residual.payload (for reports and tools). The
+// per-cluster choices and motion maps live in the coded stream: with `with_clusters` the
+// whole payload is decoded to fill them, else they are left empty.
 bool decode_predictor_plan(const Model& model, PredictorPlan* plan, std::string* error,
-                           const ResidualOptions& options = {});
+                           const ResidualOptions& options = {}, bool with_clusters = false);
 
 // Grid value -> model units, exactly as the decoder converts it (float32 output).
 inline float grid_to_model(const ResidualLayer& layer, int axis, int64_t value) {

@@ -126,12 +126,18 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   ResidualOptions ro;
   if (has_model_prediction(m)) {
     // The model's own frames on the grid: the residual layer's Model predictor, computed
-    // by the decoder's code so both sides agree bit for bit.
-    if (!model_grid_prediction(m, UINT64_MAX, &prediction, error)) return false;
+    // by the decoder's code from the model as the file stores it (written and read back:
+    // the in-memory model differs in the last bits), so both sides agree bit for bit.
+    const std::vector<uint8_t> stored_bytes = write_container(m);
+    Model stored;
+    if (!read_container(stored_bytes.data(), stored_bytes.size(), &stored, error)) return false;
+    if (!model_grid_prediction(stored, UINT64_MAX, &prediction, error)) return false;
     ro.model_prediction = &prediction;
   }
   const double snap = snap_distance(anim, opt.tolerance * L);
-  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, snap, &q, ro);
+  ResidualPlanOptions po;
+  po.threads = opt.threads;
+  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, snap, &q, ro, po);
   m.residual.payload = encode_residuals(m, q, &plan, ro);
   if (m.residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
   progress(0.75);

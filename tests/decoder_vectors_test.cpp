@@ -43,15 +43,18 @@ Model with_low_rank(Model m) {
   Model pseudo = m;
   pseudo.meta.frame_count = K + 1;
   pseudo.low_rank = LowRankModel{};
-  PredictorPlan spatial{{0, 1, 2}, std::vector<PredictorChoice>(3 * (K + 1), {PredictorKind::None, 0, 0, SpatialMode::Parallelogram})};
+  PredictorPlan spatial = uniform_plan(
+      {0, 1, 2}, std::vector<PredictorChoice>(3 * (K + 1), PredictorChoice{PredictorKind::None, 0, 0, SpatialMode::Parallelogram}));
   lr.basis_payload = encode_residuals(pseudo, mean_and_basis, &spatial);
   std::vector<int32_t> prediction;
   std::string err;
   if (!model_grid_prediction(m, UINT64_MAX, &prediction, &err)) ADD_FAILURE() << err;
   ResidualOptions ro;
   ro.model_prediction = &prediction;
-  PredictorPlan plan = default_predictor_plan(F);
-  for (PredictorChoice& c : plan.choices) c = {PredictorKind::Model, 0, 0, SpatialMode::Mean};
+  std::vector<uint32_t> order;
+  for (uint32_t f = 0; f < F; ++f) order.push_back(f);
+  PredictorPlan plan =
+      uniform_plan(order, std::vector<PredictorChoice>(size_t(F) * 3, PredictorChoice{PredictorKind::Model, 0, 0, SpatialMode::Mean}));
   m.residual.payload = encode_residuals(m, testing::grid(V, F), &plan, ro);
   return m;
 }

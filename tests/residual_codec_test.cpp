@@ -131,8 +131,8 @@ TEST(ResidualCodec, EveryPredictorAloneRoundTripsWithinTolerance) {
           // Linear needs two decoded frames: in time order frame 1 has only one.
           for (size_t k = 2; k < kFrames; ++k) {
             const uint32_t f = r.plan.order[k];
-            EXPECT_EQ(r.plan.choices[f * 3].kind, c.kind) << "frame " << f;
-            EXPECT_EQ(r.plan.choices[f * 3].spatial, c.spatial) << "frame " << f;
+            EXPECT_EQ(r.plan.frames[f].candidates[0][0].kind, c.kind) << "frame " << f;
+            EXPECT_EQ(r.plan.frames[f].candidates[0][0].spatial, c.spatial) << "frame " << f;
           }
           for (double e : r.error.max_error_per_frame) EXPECT_LE(e, tol);
         }
@@ -146,7 +146,7 @@ TEST(ResidualCodec, ReferenceFramesFindTheRepeatedPoses) {
   const LoopResult r = closed_loop(anim, 1e-3, true, po);
   EXPECT_EQ(r.decoded, r.chosen);
   // Frames 7..9 repeat frames 1..3 exactly: the best reference is 6 frames back.
-  for (uint32_t f = 7; f < kFrames; ++f) EXPECT_EQ(r.plan.choices[f * 3].r0, f - 6) << "frame " << f;
+  for (uint32_t f = 7; f < kFrames; ++f) EXPECT_EQ(r.plan.frames[f].candidates[0][0].r0, f - 6) << "frame " << f;
 }
 
 TEST(ResidualCodec, ModelPredictorUsesTheSuppliedGridPrediction) {
@@ -162,7 +162,7 @@ TEST(ResidualCodec, ModelPredictorUsesTheSuppliedGridPrediction) {
   po.kinds = 1u << int(PredictorKind::Model);
   const LoopResult r = closed_loop(anim, 1e-3, true, po, ro);
   EXPECT_EQ(r.decoded, r.chosen);
-  for (uint32_t f = 0; f < kFrames; ++f) EXPECT_EQ(r.plan.choices[f * 3].kind, PredictorKind::Model);
+  for (uint32_t f = 0; f < kFrames; ++f) EXPECT_EQ(r.plan.frames[f].candidates[0][0].kind, PredictorKind::Model);
   for (double e : r.error.max_error_per_frame) EXPECT_LE(e, 1e-3);
 
   // Without the model values the payload cannot be decoded, and says why.
@@ -251,9 +251,10 @@ TEST(ResidualCodec, PlanReferringToLaterFramesIsRejected) {
   std::vector<int32_t> q;
   Model m = grid_model(anim, 1e-3, true, &q);
   m.residual.payload = encode_residuals(m, q);  // default plan: frame 0 None, then Reference f - 1
-  // Header 6 bytes; per frame: order varint, then per axis a kind byte and, for
-  // Reference, the zigzag varint of r0 - f (-1 -> 1).
-  const size_t ref_of_frame3_axis1 = 6 + (1 + 3) + 2 * (1 + 3 * 2) + 1 + 2 + 1;
+  // Header 6 bytes, the cluster size (UINT32_MAX: a 5-byte varint) and the motion block
+  // (1 byte); per frame: order varint, candidate count, then per axis a kind byte and,
+  // for Reference, the zigzag varint of r0 - f (-1 -> 1).
+  const size_t ref_of_frame3_axis1 = 6 + 5 + 1 + (2 + 3) + 2 * (2 + 3 * 2) + 2 + 2 + 1;
   ASSERT_EQ(m.residual.payload[ref_of_frame3_axis1], 1);
   m.residual.payload[ref_of_frame3_axis1] = 3;  // -2 -> frame 1 decoded; use a later frame:
   m.residual.payload[ref_of_frame3_axis1] = 2;  // +1: frame 4, not decoded yet
@@ -261,6 +262,178 @@ TEST(ResidualCodec, PlanReferringToLaterFramesIsRejected) {
   std::string err;
   EXPECT_FALSE(decode_residuals(m, &out, &err));
   EXPECT_NE(err.find("unavailable frame"), std::string::npos) << err;
+}
+
+// Kinds (bit per PredictorKind) used by any (frame, cluster, axis) of a decoded payload.
+uint32_t kinds_in_use(const Model& m, const ResidualOptions& ro = {}) {
+  PredictorPlan plan;
+  std::string err;
+  EXPECT_TRUE(decode_predictor_plan(m, &plan, &err, ro, true)) << err;
+  uint32_t kinds = 0;
+  const uint32_t clusters = cluster_count(m.meta.vertex_count, plan.cluster_size);
+  for (const FramePredictors& fp : plan.frames)
+    for (uint32_t k = 0; k < clusters; ++k)
+      for (const PredictorChoice& c : fp.candidates[fp.cluster_candidate.empty() ? 0 : fp.cluster_candidate[k]])
+        kinds |= 1u << int(c.kind);
+  return kinds;
+}
+
+TEST(ResidualCodec, MotionPredictorPerClusterRoundTripsWithinTolerance) {
+  const Animation anim = sheet_animation();
+  for (bool faces : {true, false})
+    for (double tol : {1e-2, 1e-3})
+      for (SpatialMode spatial : {SpatialMode::Off, SpatialMode::Mean, SpatialMode::Parallelogram, SpatialMode::Blend}) {
+        SCOPED_TRACE(std::string(faces ? "faces" : "curves") + " tol " + std::to_string(tol) + " spatial " +
+                     std::to_string(int(spatial)));
+        ResidualPlanOptions po;
+        // Only Motion can use a reference frame: the motion maps must carry the turning sheet.
+        po.kinds = 1u << int(PredictorKind::Motion) | 1u << int(PredictorKind::None);
+        po.spatial_modes = 1u << int(spatial);
+        po.gop_sizes = {1, 4};
+        po.cluster_layouts = {{5, 4}, {27, 1}};
+        LoopResult r = closed_loop(anim, tol, faces, po);
+        EXPECT_EQ(r.decoded, r.chosen);
+        for (double e : r.error.max_error_per_frame) EXPECT_LE(e, tol);
+        Model m = grid_model(anim, tol, faces, &r.chosen);
+        m.residual.payload = encode_residuals(m, r.decoded, &r.plan);
+        // Against raw values (None without correction) the maps must pay; with a spatial
+        // correction, None can legitimately win on this smooth sheet.
+        if (spatial == SpatialMode::Off) {
+          EXPECT_TRUE(kinds_in_use(m) >> int(PredictorKind::Motion) & 1);
+        }
+      }
+}
+
+TEST(ResidualCodec, DefaultClustersRoundTripWithinTolerance) {
+  const Animation anim = sheet_animation();
+  for (bool faces : {true, false}) {
+    ResidualPlanOptions po;
+    po.cluster_layouts = {{4, 4}, {16, 1}};
+    const LoopResult r = closed_loop(anim, 1e-3, faces, po);
+    EXPECT_EQ(r.decoded, r.chosen);
+    for (double e : r.error.max_error_per_frame) EXPECT_LE(e, 1e-3);
+  }
+}
+
+// A hand-made plan: every cluster picks a random candidate among kinds mixed per axis,
+// with random motion maps: whatever the encoder would never pick must still round-trip.
+PredictorPlan random_cluster_plan(uint32_t V, uint32_t F, std::mt19937& rng) {
+  PredictorPlan plan;
+  plan.cluster_size = 7;
+  plan.motion_block = 3;
+  const uint32_t clusters = cluster_count(V, plan.cluster_size), blocks = motion_block_count(V, plan);
+  plan.frames.resize(F);
+  for (uint32_t f = 0; f < F; ++f) {
+    plan.order.push_back(f);
+    FramePredictors& fp = plan.frames[f];
+    const uint32_t K = f == 0 ? 1 : 1 + rng() % 5;
+    for (uint32_t j = 0; j < K; ++j) {
+      std::array<PredictorChoice, 3> c;
+      for (PredictorChoice& p : c) {
+        p.spatial = SpatialMode(rng() % kSpatialModeCount);
+        p.kind = f == 0 ? PredictorKind::None : PredictorKind(rng() % 3 == 0 ? 4 : rng() % 3);
+        p.r0 = f == 0 ? 0 : uint32_t(rng() % f);
+        if (p.kind == PredictorKind::Linear) {
+          if (f < 2) p.kind = PredictorKind::Motion;
+          else p.r1 = (p.r0 + 1 + uint32_t(rng() % (f - 1))) % f;
+        }
+      }
+      fp.candidates.push_back(c);
+    }
+    if (K > 1)
+      for (uint32_t k = 0; k < clusters; ++k) fp.cluster_candidate.push_back(uint8_t(rng() % K));
+    fp.transforms.resize(size_t(blocks) * K);
+    for (MotionTransform& t : fp.transforms)
+      for (MotionRow& row : t.row) {
+        for (int32_t& m : row.m) m = int32_t(rng() % 4001) - 2000;
+        row.t = int32_t(rng() % 21) - 10;
+      }
+  }
+  return plan;
+}
+
+TEST(ResidualCodec, RandomClusterPlansRoundTripBitExactly) {
+  const Animation anim = sheet_animation();
+  std::mt19937 rng(11);
+  for (bool faces : {true, false})
+    for (int trial = 0; trial < 10; ++trial) {
+      std::vector<int32_t> q;
+      Model m = grid_model(anim, 1e-3, faces, &q);
+      const PredictorPlan plan = random_cluster_plan(anim.vertex_count, kFrames, rng);
+      ASSERT_TRUE(plan_is_valid(plan, kFrames, anim.vertex_count, {}));
+      m.residual.payload = encode_residuals(m, q, &plan);
+      ASSERT_FALSE(m.residual.payload.empty());
+      std::vector<int32_t> out;
+      std::string err;
+      ASSERT_TRUE(decode_residuals(m, &out, &err)) << err;
+      EXPECT_EQ(out, q);
+      PredictorPlan back;
+      ASSERT_TRUE(decode_predictor_plan(m, &back, &err, {}, true)) << err;
+      for (uint32_t f = 0; f < kFrames; ++f) EXPECT_EQ(back.frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
+
+      // Corrupted copies decode exactly (a flip into an equivalent reference) or are refused.
+      const std::vector<uint8_t> good = m.residual.payload;
+      for (int flip = 0; flip < 40; ++flip) {
+        m.residual.payload = good;
+        m.residual.payload[rng() % good.size()] ^= uint8_t(1 + rng() % 255);
+        if (decode_residuals(m, &out, &err)) EXPECT_EQ(out, q);
+        else EXPECT_FALSE(err.empty());
+      }
+    }
+}
+
+TEST(ResidualCodec, InvalidCandidatesAndMotionMapsAreRejected) {
+  const Animation anim = sheet_animation();
+  std::mt19937 rng(5);
+  std::vector<int32_t> q;
+  Model m = grid_model(anim, 1e-3, true, &q);
+  PredictorPlan plan = random_cluster_plan(anim.vertex_count, kFrames, rng);
+  // The encoder refuses maps out of the stored range and indices beyond the candidates.
+  PredictorPlan bad = plan;
+  bad.frames[3].transforms[0].row[1].t = kMaxMotionShift + 1;
+  EXPECT_TRUE(encode_residuals(m, q, &bad).empty());
+  bad = plan;
+  bad.frames[2].cluster_candidate.assign(cluster_count(anim.vertex_count, plan.cluster_size),
+                                         uint8_t(bad.frames[2].candidates.size()));
+  EXPECT_TRUE(encode_residuals(m, q, &bad).empty());
+  // Header: version, neighbours, checksum (6 bytes), cluster size 7, motion block 3, then
+  // frame 0's order varint and its candidate count (1: frame 0 has one).
+  m.residual.payload = encode_residuals(m, q, &plan);
+  const std::vector<uint8_t> good = m.residual.payload;
+  ASSERT_EQ(good[9], 1);
+  std::vector<int32_t> out;
+  std::string err;
+  for (uint8_t count : {0, 17}) {
+    m.residual.payload = good;
+    m.residual.payload[9] = count;
+    EXPECT_FALSE(decode_residuals(m, &out, &err));
+    EXPECT_NE(err.find("candidate count"), std::string::npos) << err;
+  }
+  m.residual.payload = good;
+  m.residual.payload[6] = 0;  // cluster size 0
+  EXPECT_FALSE(decode_residuals(m, &out, &err));
+  EXPECT_NE(err.find("cluster size"), std::string::npos) << err;
+  m.residual.payload = good;
+  m.residual.payload[10] = uint8_t(5 | (m.residual.payload[10] & 0xF0));  // kind 5 does not exist
+  EXPECT_FALSE(decode_residuals(m, &out, &err));
+  EXPECT_NE(err.find("malformed"), std::string::npos) << err;
+}
+
+TEST(MotionCompensation, FixedPointPredictionRoundsHalfUpInIntegers) {
+  const int64_t centre[3] = {100, -50, 7};
+  MotionRow row;
+  row.m[0] = 8192;  // x scale 1.5
+  row.m[1] = -1;    // a hair of y
+  row.t = 3;
+  const int32_t x[3] = {101, -50, 1000};
+  // 100 + 3 + round((16384 + 8192) * 1 / 16384) = 103 + round(1.5) = 105.
+  EXPECT_EQ(motion_prediction(row, 0, centre, x), 105);
+  const int32_t y[3] = {99, -49, 7};
+  // 103 + round((-24576 - 1) / 16384) = 103 + round(-1.50006) = 103 - 2.
+  EXPECT_EQ(motion_prediction(row, 0, centre, y), 101);
+  // The identity map reproduces the reference values.
+  const MotionRow identity;
+  for (int a = 0; a < 3; ++a) EXPECT_EQ(motion_prediction(identity, a, centre, x), x[a]);
 }
 
 TEST(AdaptiveIntCoder, ExtremeAndSkewedValuesRoundTrip) {

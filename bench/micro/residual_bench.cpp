@@ -92,7 +92,7 @@ const Case* load(const std::string& seq, double tol) {
   for (size_t i = 0; i < c.q.size(); ++i) delta[i] = rounded[i] - (i >= n ? rounded[i - n] : 0);
   c.delta_zstd = varint_zstd(delta);
   PredictorPlan plan;
-  if (!decode_predictor_plan(c.model, &plan, &err)) return nullptr;
+  if (!decode_predictor_plan(c.model, &plan, &err, {}, true)) return nullptr;
   const std::vector<int64_t> residuals = residual_values(c.model, c.q, plan);
   c.plan_zstd = varint_zstd(residuals);
 #ifdef DCURVE_HAVE_HTSCODECS

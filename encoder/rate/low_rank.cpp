@@ -53,9 +53,10 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, const std::vector<i
   pseudo.curves = model.curves;
   std::vector<uint8_t> best;
   for (uint8_t s = 0; s < kSpatialModeCount; ++s) {
-    PredictorPlan plan;
-    for (uint32_t f = 0; f < frames; ++f) plan.order.push_back(f);
-    plan.choices.assign(size_t(frames) * 3, PredictorChoice{PredictorKind::None, 0, 0, SpatialMode(s)});
+    std::vector<uint32_t> order;
+    for (uint32_t f = 0; f < frames; ++f) order.push_back(f);
+    PredictorPlan plan = uniform_plan(
+        order, std::vector<PredictorChoice>(size_t(frames) * 3, PredictorChoice{PredictorKind::None, 0, 0, SpatialMode(s)}));
     std::vector<uint8_t> payload = encode_residuals(pseudo, values, &plan);
     if (!payload.empty() && (best.empty() || payload.size() < best.size())) best.swap(payload);
   }

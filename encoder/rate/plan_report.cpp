@@ -32,25 +32,57 @@ nlohmann::json predictor_use(const Model& m) {
     options.model_prediction = &prediction;
   }
   PredictorPlan plan;
-  if (!decode_predictor_plan(m, &plan, &err, options)) return nullptr;
-  static const char* kinds[] = {"none", "reference", "linear", "model"};
+  if (!decode_predictor_plan(m, &plan, &err, options, true)) return nullptr;
+  static const char* kinds[] = {"none", "reference", "linear", "model", "motion"};
   static const char* spatial[] = {"off", "mean", "parallelogram", "blend"};
-  nlohmann::json k = nlohmann::json::object(), sp = nlohmann::json::object();
-  for (const PredictorChoice& c : plan.choices) {
-    const std::string kn = size_t(c.kind) < 4 ? kinds[size_t(c.kind)] : "other";
-    const std::string sn = size_t(c.spatial) < 4 ? spatial[size_t(c.spatial)] : "other";
-    k[kn] = k.value(kn, 0) + 1;
-    sp[sn] = sp.value(sn, 0) + 1;
+  auto count = [](nlohmann::json& j, const std::string& key) { j[key] = j.value(key, 0) + 1; };
+  auto kind_name = [&](const PredictorChoice& c) {
+    return size_t(c.kind) < kPredictorKindCount ? kinds[size_t(c.kind)] : "other";
+  };
+  // kind, spatial: each frame's first candidate, per axis; cluster_kind: what every
+  // (frame, cluster, axis) actually uses.
+  nlohmann::json k = nlohmann::json::object(), sp = nlohmann::json::object(), ck = nlohmann::json::object();
+  const uint32_t clusters = cluster_count(m.meta.vertex_count, plan.cluster_size);
+  uint64_t candidates = 0, clustered_frames = 0, motion_maps = 0;
+  for (const FramePredictors& fp : plan.frames) {
+    for (const PredictorChoice& c : fp.candidates[0]) {
+      count(k, kind_name(c));
+      count(sp, size_t(c.spatial) < kSpatialModeCount ? spatial[size_t(c.spatial)] : "other");
+    }
+    candidates += fp.candidates.size();
+    clustered_frames += fp.candidates.size() > 1;
+    for (uint32_t cl = 0; cl < clusters; ++cl) {
+      const auto& used = fp.candidates[fp.cluster_candidate.empty() ? 0 : fp.cluster_candidate[cl]];
+      bool motion = false;
+      for (const PredictorChoice& c : used) {
+        count(ck, kind_name(c));
+        motion = motion || c.kind == PredictorKind::Motion;
+      }
+      motion_maps += motion;
+    }
   }
   bool time_order = true;
   for (size_t i = 0; i < plan.order.size(); ++i) time_order = time_order && plan.order[i] == i;
-  return {{"kind", k}, {"spatial", sp}, {"coding_order", time_order ? "time" : "hierarchical"}};
+  return {{"kind", k},
+          {"spatial", sp},
+          {"coding_order", time_order ? "time" : "hierarchical"},
+          {"cluster_size", std::min<uint64_t>(plan.cluster_size, m.meta.vertex_count)},
+          {"clusters", clusters},
+          {"candidates", candidates},
+          {"clustered_frames", clustered_frames},
+          {"cluster_kind", ck},
+          {"motion_transforms", motion_maps}};
 }
 
 std::string predictor_use_text(const nlohmann::json& use) {
   if (use.is_null()) return "";
-  return counts_text(use["kind"]) + "; " + counts_text(use["spatial"]) + "; " +
-         use["coding_order"].get<std::string>() + " order";
+  std::string text = counts_text(use["kind"]) + "; " + counts_text(use["spatial"]) + "; " +
+                     use["coding_order"].get<std::string>() + " order";
+  if (use["clustered_frames"].get<uint64_t>() > 0)
+    text += "; per cluster of " + std::to_string(use["cluster_size"].get<uint64_t>()) +
+            " vertices: " + counts_text(use["cluster_kind"]) + " (" +
+            std::to_string(use["motion_transforms"].get<uint64_t>()) + " motion maps)";
+  return text;
 }
 
 }  // namespace dcurve

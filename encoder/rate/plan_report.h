@@ -10,7 +10,9 @@
 
 namespace dcurve {
 
-// {"kind": {name: count}, "spatial": {name: count}, "coding_order": "time"|"hierarchical"},
+// {"kind", "spatial": {name: count} of each frame's first candidate per axis; "coding_order":
+// "time"|"hierarchical"; "cluster_size", "clusters", "candidates", "clustered_frames";
+// "cluster_kind": {name: count} over every (frame, cluster, axis); "motion_transforms"},
 // or null when the model has no residual layer or its plan cannot be decoded.
 nlohmann::json predictor_use(const Model& model);
 

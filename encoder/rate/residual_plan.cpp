@@ -1,12 +1,16 @@
 #include "encoder/rate/residual_plan.h"
 
+#include "encoder/parallel.h"
+#include "encoder/rate/cluster_plan.h"
+#include "encoder/rate/plan_steps.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 
 namespace dcurve {
-namespace {
 
 constexpr int kClasses = 2 * 41 + 1;
 
@@ -20,7 +24,7 @@ int residual_cost(int64_t r) {
   return 2 + 2 * e;
 }
 
-double distance2(const ResidualLayer& layer, const float* x, const int64_t* k) {
+static double distance2(const ResidualLayer& layer, const float* x, const int64_t* k) {
   double d2 = 0;
   for (int a = 0; a < 3; ++a) {
     const double d = double(grid_to_model(layer, a, k[a])) - double(x[a]);
@@ -80,7 +84,7 @@ int neighbour_class(const Traversal& t, uint32_t pos, int axis, const std::vecto
 
 // Decoded frames most similar to frame f (sum of absolute grid differences on a sample
 // of values), other than the ones always tried.
-std::vector<uint32_t> similar_frames(const std::vector<int32_t>& q, uint32_t V, uint32_t f,
+static std::vector<uint32_t> similar_frames(const std::vector<int32_t>& q, uint32_t V, uint32_t f,
                                      const std::vector<uint8_t>& decoded, const std::vector<uint32_t>& tried,
                                      const ResidualPlanOptions& po) {
   const size_t stride = size_t(V) * 3, sample = std::max<size_t>(1, stride / 4096);
@@ -104,7 +108,7 @@ std::vector<uint32_t> similar_frames(const std::vector<int32_t>& q, uint32_t V, 
 // Time order when gop is 1; otherwise every gop-th frame (and the last) in time order,
 // each followed by the frames before it down to the previous key, coded by recursive
 // midpoints so that each is interpolated between two decoded frames.
-std::vector<uint32_t> coding_order(uint32_t F, uint32_t gop) {
+static std::vector<uint32_t> coding_order(uint32_t F, uint32_t gop) {
   std::vector<uint32_t> order;
   if (F == 0) return order;
   order.push_back(0);
@@ -165,8 +169,6 @@ std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint3
   return out;
 }
 
-}  // namespace
-
 double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::vector<uint8_t>& contexts) {
   std::vector<std::vector<uint64_t>> hist;
   std::vector<uint64_t> count;
@@ -202,8 +204,7 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
                       const ResidualPlanOptions& po, std::vector<int32_t>* q, PredictorPlan* plan) {
   const uint32_t V = model.meta.vertex_count, F = model.meta.frame_count;
   const size_t stride = size_t(V) * 3;
-  plan->order = order;
-  plan->choices.assign(size_t(F) * 3, PredictorChoice());
+  std::vector<PredictorChoice> choices(size_t(F) * 3);
   std::vector<uint8_t> decoded(F, 0);
   std::vector<int64_t> base(stride), residuals(stride);
   std::vector<uint8_t> contexts(stride), magnitude(stride);  // magnitude: by vertex, clamped
@@ -219,7 +220,8 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
       for (uint32_t pos = 0; pos < V; ++pos) {
         const uint32_t v = trav.order[pos];
         int64_t pred[3];
-        vertex_prediction(choice, trav, pos, V, scratch.data(), base.data(), pred);
+        vertex_prediction(choice, trav, pos, scratch.data(),
+                          [&](uint32_t u, int a) { return base[size_t(a) * V + u]; }, pred);
         int32_t* qv = &scratch[size_t(v) * 3];
         if (po.snap) snap_vertex(model.residual, &frames[f][size_t(v) * 3], radius, po.distance_weight, pred, qv);
         uint8_t axis_max = 0;
@@ -236,13 +238,14 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
       if (bits < best) {
         best = bits;
         best_frame.swap(scratch);
-        for (int a = 0; a < 3; ++a) plan->choices[size_t(f) * 3 + size_t(a)] = c;
+        for (int a = 0; a < 3; ++a) choices[size_t(f) * 3 + size_t(a)] = c;
       }
     }
     std::copy(best_frame.begin(), best_frame.end(), qf);
     decoded[f] = 1;
     total += best;
   }
+  *plan = uniform_plan(order, choices);
   return total;
 }
 
@@ -254,24 +257,41 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
   const Traversal trav = build_traversal(model);
   // A hair inside the bound, so rounding in the error measurement cannot push it over.
   const double radius = max_distance * (1.0 - 1e-9);
-  PredictorPlan best_plan;
-  std::vector<int32_t> best_q;
-  double best = HUGE_VAL;
-  for (uint32_t gop : po.gop_sizes) {
-    std::vector<int32_t> trial(*q);
+  // Independent trials run in parallel; the first smallest wins, whatever the thread count.
+  struct Trial {
+    std::vector<int32_t> q;
     PredictorPlan plan;
-    plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, gop), options, po, &trial, &plan);
+    size_t bytes = SIZE_MAX;
+  };
+  auto keep_smallest = [](std::vector<Trial>& trials, Trial* best) {
+    for (Trial& t : trials)
+      if (t.bytes < best->bytes) *best = std::move(t);
+  };
+  Trial best;
+  std::vector<Trial> orders(po.gop_sizes.size());
+  parallel_for(orders.size(), po.threads, [&](size_t i) {
+    Trial& t = orders[i];
+    t.q = *q;
+    plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, po.gop_sizes[i]), options, po,
+                   &t.q, &t.plan);
     // The order is judged by the coded size: the estimate that ranks predictors within a
     // frame ignores the contexts, which favour some orders.
-    const double bits = double(encode_residuals(model, trial, &plan, options).size());
-    if (bits < best) {
-      best = bits;
-      best_plan = std::move(plan);
-      best_q.swap(trial);
-    }
-  }
-  q->swap(best_q);
-  return best_plan;
+    t.bytes = encode_residuals(model, t.q, &t.plan, options).size();
+  });
+  keep_smallest(orders, &best);
+  // Per-cluster predictors on the winning order, kept when they code smaller.
+  std::vector<Trial> layouts(po.cluster_layouts.size());
+  parallel_for(layouts.size(), po.threads, [&](size_t i) {
+    Trial& t = layouts[i];
+    t.q = *q;
+    const ResidualPlanOptions::ClusterLayout& layout = po.cluster_layouts[i];
+    t.plan = choose_cluster_plan(model, frames, radius, best.plan.order, layout.cluster_size, layout.motion_block,
+                                 po.max_candidates, &t.q, options, po);
+    t.bytes = encode_residuals(model, t.q, &t.plan, options).size();
+  });
+  keep_smallest(layouts, &best);
+  q->swap(best.q);
+  return best.plan;
 }
 
 }  // namespace dcurve

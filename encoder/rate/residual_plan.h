@@ -28,6 +28,18 @@ struct ResidualPlanOptions {
   // without spatial correction. For tests and studies.
   uint32_t kinds = ~0u;
   uint32_t spatial_modes = ~0u;
+  // Per-cluster predictors (encoder/rate/cluster_plan.h), each layout tried on the chosen
+  // coding order (the smallest coded payload wins, one predictor per frame included):
+  // traversal positions per cluster (>= 1) and clusters per motion map (>= 1). Small
+  // clusters follow the mesh's parts; large ones pay for motion maps on few vertices.
+  struct ClusterLayout {
+    uint32_t cluster_size, motion_block;
+  };
+  std::vector<ClusterLayout> cluster_layouts = {{8, 32}, {512, 1}};
+  uint32_t max_candidates = 8;  // candidates a frame may keep, 1..16
+  // Threads for the independent trials (coding orders, cluster layouts); 0 = all cores.
+  // The result never depends on it.
+  int threads = 0;
 };
 
 // Estimated cost, bits, of coding `residuals` with an adaptive integer coder: their

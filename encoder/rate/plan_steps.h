@@ -1,0 +1,32 @@
+// Steps of the residual rate control shared by the per-frame plan (residual_plan.cpp) and
+// the per-cluster refinement (cluster_plan.cpp).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "codec/model.h"
+#include "codec/predictors.h"
+#include "encoder/rate/residual_plan.h"
+
+namespace dcurve {
+
+// Estimated bits of one residual (grid steps) when choosing among grid points.
+int residual_cost(int64_t r);
+
+// Moves qv (a vertex's three grid values) to the admissible grid point (decoded within
+// radius, model units, of the input position x) cheapest to code against pred.
+void snap_vertex(const ResidualLayer& layer, const float* x, double radius, double distance_weight,
+                 const int64_t* pred, int32_t* qv);
+
+// Class (0..3, 4 for none) of the earlier neighbours' residual magnitudes (clamped, by
+// vertex and axis) of traversal position pos on axis.
+int neighbour_class(const Traversal& t, uint32_t pos, int axis, const std::vector<uint8_t>& magnitude);
+
+// Frame-wide candidate predictors for frame f given the decoded frames (decoded[r] != 0):
+// None, Reference and Linear to the nearest decoded frames, Reference to similar poses,
+// Model; each with every allowed spatial mode. Never empty.
+std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint32_t V, uint32_t f,
+                                            const std::vector<uint8_t>& decoded, const ResidualOptions& options,
+                                            const ResidualPlanOptions& po);
+
+}  // namespace dcurve
