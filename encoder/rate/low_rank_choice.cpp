@@ -23,16 +23,18 @@ constexpr double kFirstStep = 0.15;
 constexpr double kOtherSteps[] = {0.1, 0.25, 0.4};
 // Frames the screening estimate samples (every ceil(F / this)-th frame).
 constexpr uint32_t kScreenFrames = 24;
-// Counts past the best one screened before giving up on larger ones.
-constexpr int kPatience = 2;
-// The screening estimate ignores the coder's contexts and takes each frame's better
-// predictor for free, so it overstates savings (measured: 1.15-1.25x on cantilever, neck and
-// blob, 7x on chicken-crossing). On inputs of more than kCheapTrial vertex-frames a full
-// trial runs only when the estimated saving is at least kTrialSavingFactor times the
-// section's raw bytes: that skips the losing trial on chicken-crossing (1.87x, 7 s of
-// encode) and keeps the winning ones (cantilever 3.2x, neck 2.5x); a large input whose model
-// would save less than that is missed. Smaller inputs try every estimated net saving.
-constexpr double kTrialSavingFactor = 2.0;
+// Counts past the best one screened before giving up on larger ones: every count, since the
+// estimate is not unimodal in K (chicken-crossing at 1e-3: net saving falls from K = 1 to 6,
+// then rises to its best at K = 24).
+constexpr int kPatience = int(std::size(kComponentCounts));
+// The screening estimate ignores the coder's contexts and the per-cluster predictor choice,
+// so it misjudges savings both ways (it overstated them 1.15-1.25x on cantilever, neck and
+// blob; on chicken-crossing at 1e-3 it estimated 1.88x the section for K = 24 where the full
+// encode saved 29 KB net, 124,286 -> 94,943 bytes). On inputs of more than kCheapTrial
+// vertex-frames a full trial runs only when the estimated saving is at least
+// kTrialSavingFactor times the section's raw bytes, which bounds the encode time lost to
+// losing trials; smaller inputs try every estimated net saving.
+constexpr double kTrialSavingFactor = 1.5;
 constexpr double kCheapTrial = double(1 << 18);
 // Above this many multiply-adds the F x F Gram matrix is not worth building automatically.
 constexpr double kMaxGramWork = 4e9;
