@@ -453,6 +453,13 @@ bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* 
 
 std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
                                      const ResidualOptions& options) {
+  // A plan read without its clusters has no motion maps: nothing to walk with.
+  const uint32_t blocks = motion_block_count(model.meta.vertex_count, plan);
+  for (const FramePredictors& fp : plan.frames)
+    for (const auto& candidate : fp.candidates)
+      for (const PredictorChoice& c : candidate)
+        if (c.kind == PredictorKind::Motion && fp.transforms.size() != size_t(blocks) * fp.candidates.size())
+          return {};
   std::vector<int64_t> out;
   out.reserve(q.size());
   std::vector<int32_t> work(q);

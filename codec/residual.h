@@ -90,6 +90,8 @@ inline float grid_to_model(const ResidualLayer& layer, int axis, int64_t value) 
 
 // The residuals encode_residuals would code, in coding order (frame in plan order,
 // traversal position, axis): for measuring the entropy coder against general-purpose compressors.
+// `plan` must be complete (from the encoder, or decode_predictor_plan with with_clusters);
+// empty when it uses Motion without its maps.
 std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
                                      const ResidualOptions& options = {});
 
