@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "codec/bytes.h"
+#include "codec/error.h"
 #include "codec/faces_compact.h"
 
 namespace dcurve {
@@ -84,15 +85,11 @@ std::vector<uint8_t> encode_exact(const std::vector<uint32_t>& faces) {
   return std::move(head.data());
 }
 
+// Leaves *faces as it stops on bad input: decode_faces clears it on any failure.
 bool decode_exact(ByteReader& r, std::vector<uint32_t>* faces, std::string* error) {
-  auto fail = [&](const char* msg) {
-    if (error) *error = msg;
-    faces->clear();
-    return false;
-  };
   uint64_t T = r.varint();
   // One op byte per triangle: the count can never exceed the bytes that follow.
-  if (!r.ok || T > r.remaining()) return fail("face count exceeds the section size");
+  if (!r.ok || T > r.remaining()) return fail(error, "face count exceeds the section size");
   const uint8_t* ops = r.take(size_t(T));
   faces->resize(size_t(T) * 3);
   History h;
@@ -109,24 +106,24 @@ bool decode_exact(ByteReader& r, std::vector<uint32_t>* faces, std::string* erro
     uint32_t* tri = &(*faces)[3 * t];
     if (op & kOpHasEdge) {
       int k = (op >> 3) & 15, rot = op & 3;
-      if (k >= h.filled || rot > 2) return fail("face op refers to an edge or rotation that does not exist");
+      if (k >= h.filled || rot > 2) return fail(error, "face op refers to an edge or rotation that does not exist");
       uint32_t canon[3] = {h.edge(k)[0], h.edge(k)[1], 0};
       if (op & kOpThirdIsNext) {
-        if (h.next >= UINT32_MAX) return fail("face vertex id overflows");
+        if (h.next >= UINT32_MAX) return fail(error, "face vertex id overflows");
         canon[2] = uint32_t(h.next);
       } else if (!explicit_id(&canon[2])) {
-        return fail("face vertex id is truncated or out of range");
+        return fail(error, "face vertex id is truncated or out of range");
       }
       for (int c = 0; c < 3; ++c) tri[(rot + c) % 3] = canon[c];
     } else {
-      if (op & 0x78) return fail("face op has reserved bits set");
+      if (op & 0x78) return fail(error, "face op has reserved bits set");
       uint64_t next = h.next;
       for (int c = 0; c < 3; ++c) {
         if (op & (1 << c)) {
-          if (next >= UINT32_MAX) return fail("face vertex id overflows");
+          if (next >= UINT32_MAX) return fail(error, "face vertex id overflows");
           tri[c] = uint32_t(next);
         } else if (!explicit_id(&tri[c])) {
-          return fail("face vertex id is truncated or out of range");
+          return fail(error, "face vertex id is truncated or out of range");
         }
         next = std::max<uint64_t>(next, uint64_t(tri[c]) + 1);
       }
@@ -204,16 +201,12 @@ std::vector<uint8_t> encode_traversal(const std::vector<uint32_t>& faces) {
   return std::move(w.data());
 }
 
+// As decode_exact: decode_faces clears *faces on failure.
 bool decode_traversal(ByteReader& r, std::vector<uint32_t>* faces, std::string* error) {
-  auto fail = [&](const char* msg) {
-    if (error) *error = msg;
-    faces->clear();
-    return false;
-  };
   const uint64_t T = r.varint();
   const uint64_t S = r.varint();
   // Every triangle costs at least one byte of ids: the count is bounded by the section.
-  if (!r.ok || T > r.remaining() || S > r.remaining()) return fail("face count exceeds the section size");
+  if (!r.ok || T > r.remaining() || S > r.remaining()) return fail(error, "face count exceeds the section size");
   const uint8_t* symbols = r.take(size_t(S));
   faces->clear();
   faces->reserve(size_t(T) * 3);
@@ -229,24 +222,24 @@ bool decode_traversal(ByteReader& r, std::vector<uint32_t>* faces, std::string* 
     if (head * 3 == faces->size()) {
       for (int c = 0; c < 3; ++c) {
         uint32_t v;
-        if (!id(ref, &v)) return fail("face vertex id is truncated or out of range");
+        if (!id(ref, &v)) return fail(error, "face vertex id is truncated or out of range");
         ref = v;
         faces->push_back(v);
       }
     }
     for (int e = 0; e < 3 && faces->size() < T * 3; ++e) {
-      if (s >= S) return fail("face traversal symbols are truncated");
+      if (s >= S) return fail(error, "face traversal symbols are truncated");
       const uint8_t sym = symbols[s++];
-      if (sym > 1) return fail("face traversal symbol is not 0 or 1");
+      if (sym > 1) return fail(error, "face traversal symbol is not 0 or 1");
       if (!sym) continue;
       const uint32_t a = (*faces)[3 * head + e], b = (*faces)[3 * head + (e + 1) % 3];
       uint32_t x;
-      if (!id(a, &x)) return fail("face vertex id is truncated or out of range");
+      if (!id(a, &x)) return fail(error, "face vertex id is truncated or out of range");
       faces->insert(faces->end(), {b, a, x});
     }
     ++head;
   }
-  if (s != S) return fail("face traversal has unused symbols");
+  if (s != S) return fail(error, "face traversal has unused symbols");
   return true;
 }
 
