@@ -115,7 +115,6 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     // stay within a tenth of the tolerance of the unrounded fit.
     mo.coefficient_error = 0.1 * opt.tolerance * L;
     if (!fit_motion_model(anim, m.curves, anim.frames[0], mo, &m.segments, error)) return false;
-    rep.model_bytes = motion_model_raw_bytes(m.segments);
   }
   progress(0.6);
 
@@ -160,8 +159,10 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (!read_container(out->data(), out->size(), &written, error, &sections)) return false;
   rep.connectivity_bytes = connectivity_bytes(sections);
   rep.low_rank_components = m.low_rank.components;
-  for (const SectionInfo& s : sections)
+  for (const SectionInfo& s : sections) {
     if (s.tag == "LRNK") rep.low_rank_bytes = s.stored_bytes + kSectionHeaderBytes;
+    if (s.tag == "SEGS" && !m.segments.empty()) rep.model_bytes = s.raw_bytes;
+  }
   rep.motion_bytes = rep.bytes - rep.connectivity_bytes;
   rep.vertices = V;
   rep.frames = F;

@@ -46,7 +46,7 @@ struct EncodeReport {
   double encode_seconds = 0;
   CurveReport curves{};             // the extracted curves (encoder/curves/report.h)
   std::string curve_fallback;       // why curve extraction fell back to one-vertex curves, or empty
-  uint64_t model_bytes = 0;         // PDE model, before entropy coding (0 without a model)
+  uint64_t model_bytes = 0;         // SEGS section before zstd, as written (0 without a model)
   uint32_t low_rank_components = 0; // K of the low-rank model in the file, 0 when none
   uint64_t low_rank_bytes = 0;      // its LRNK section as stored, header included
 };

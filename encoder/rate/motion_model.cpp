@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "codec/basis.h"
-#include "codec/bytes.h"
 #include "codec/container.h"
 #include "encoder/fit/fit.h"
 
@@ -89,22 +88,6 @@ bool fit_motion_model(const Animation& anim, const Curves& curves, const std::ve
     segments->push_back(std::move(seg));
   }
   return true;
-}
-
-uint64_t motion_model_raw_bytes(const std::vector<Segment>& segments) {
-  uint64_t bytes = 0;
-  for (const Segment& s : segments)
-    for (const CurveMotion& m : s.motion) {
-      bytes += 1;
-      if (m.basis == Basis::Zero) continue;
-      bytes += 10;
-      for (float c : m.coeffs)
-        for (uint64_t z = zigzag_encode(int64_t(std::ldexp(double(c), -m.coeff_exponent))); ; z >>= 7) {
-          ++bytes;
-          if (z < 0x80) break;
-        }
-    }
-  return bytes;
 }
 
 }  // namespace dcurve

@@ -36,8 +36,4 @@ std::vector<std::pair<uint32_t, uint32_t>> plan_segments(uint32_t frame_count, u
 bool fit_motion_model(const Animation& anim, const Curves& curves, const std::vector<float>& rest,
                       const MotionModelOptions& options, std::vector<Segment>* segments, std::string* error);
 
-// Stored size of the model in bytes before entropy coding: what it costs the file.
-// Coefficients are counted at their stored varint sizes.
-uint64_t motion_model_raw_bytes(const std::vector<Segment>& segments);
-
 }  // namespace dcurve
