@@ -145,6 +145,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   wo.connectivity = opt.connectivity;
   LowRankChoiceOptions lro;
   lro.components = opt.low_rank;
+  lro.threads = opt.threads;
   if (!choose_low_rank(&m, anim.frames, rounded, snap, wo, lro, nullptr, error)) return false;
   progress(0.9);
   *out = write_container(m, wo);

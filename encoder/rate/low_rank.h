@@ -24,9 +24,11 @@ GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t
 
 // Quantizes the first K components (K <= pca.weights.size()) into model->low_rank: basis
 // values on a step of basis_step grid units, the mean on 2^-mean_shift grid units, the
-// coefficients fine enough that their rounding moves a prediction by at most basis_step / 2;
+// coefficients fine enough that their rounding moves a prediction by at most basis_step;
 // codes the mean and basis with the residual coder (model's faces or curves give the
-// neighbours). False when a value would leave the format's ranges.
-bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, Model* model);
+// neighbours) on up to `threads` threads (0: all cores; the bytes never depend on it).
+// False when a value would leave the format's ranges.
+bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
+                       Model* model);
 
 }  // namespace dcurve

@@ -145,6 +145,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   ResidualPlanOptions screen;
   screen.kinds = 1u << int(PredictorKind::Model);
   screen.gop_sizes = {1};
+  screen.threads = options.threads;
   // An odd stride: hierarchical coding orders make every power-of-two-th frame dearer.
   const FrameSample sample = sample_frames(*model, frames, rounded, ((F + kScreenFrames - 1) / kScreenFrames) | 1);
   const double sample_scale = double(F) / double(sample.frames.size());
@@ -152,7 +153,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   auto try_candidate = [&](uint32_t K, double step, bool* screened) {
     *screened = false;
     Model trial = *model;
-    if (!quantize_low_rank(pca, K, step, mean_shift_for(step), &trial)) return true;
+    if (!quantize_low_rank(pca, K, step, mean_shift_for(step), options.threads, &trial)) return true;
     const double section = double(low_rank_bytes(trial).size());
     if (!forced && section >= double(model->residual.payload.size())) return true;
     std::vector<int32_t> prediction, sampled, q = sample.rounded;
@@ -210,6 +211,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   // coding order matters little: time order and the order chosen without one are tried.
   ResidualPlanOptions trial_plan;
   trial_plan.gop_sizes = {1};
+  trial_plan.threads = options.threads;
   if (F > 2 && plan_without.order[1] > 1) trial_plan.gop_sizes.push_back(plan_without.order[1]);
   uint64_t best = forced ? UINT64_MAX : rep.bytes_without;
   Model best_model;

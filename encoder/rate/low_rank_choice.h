@@ -17,6 +17,7 @@ struct LowRankChoiceOptions {
   int components = -1;
   // Full residual encodes tried with a low-rank model, best screened candidates first, >= 1.
   uint32_t max_trials = 1;
+  int threads = 0;  // 0: all cores; the result never depends on it
 };
 
 struct LowRankChoiceReport {
