@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <vector>
 
 namespace dcurve {
 
@@ -49,24 +50,40 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, doub
     for (int a = 0; a < 3; ++a) qv[a] = int32_t(pred[a]);  // admissible, so within int32 range
     return;
   }
-  int64_t lo[3], hi[3], k[3], best[3];
+  // The score separates by axis: each axis's candidate values, squared distances and bits
+  // are computed once, not once per lattice point (snapping was half of an encode's time).
+  int64_t lo[3], best[3];
+  thread_local std::vector<double> axis_d2[3];
+  thread_local std::vector<int> axis_bits[3];
   for (int a = 0; a < 3; ++a) {
     lo[a] = int64_t(std::floor((double(x[a]) - radius - layer.origin[a]) / layer.step));
-    hi[a] = int64_t(std::ceil((double(x[a]) + radius - layer.origin[a]) / layer.step));
+    const int64_t hi = int64_t(std::ceil((double(x[a]) + radius - layer.origin[a]) / layer.step));
+    axis_d2[a].clear();
+    axis_bits[a].clear();
+    for (int64_t k = lo[a]; k <= hi; ++k) {
+      const double d = double(grid_to_model(layer, a, k)) - double(x[a]);
+      axis_d2[a].push_back(d * d);
+      axis_bits[a].push_back(residual_cost(k - pred[a]));
+    }
     best[a] = qv[a];
   }
   double best_score = score(best, distance2(layer, x, best));
-  for (k[0] = lo[0]; k[0] <= hi[0]; ++k[0])
-    for (k[1] = lo[1]; k[1] <= hi[1]; ++k[1])
-      for (k[2] = lo[2]; k[2] <= hi[2]; ++k[2]) {
-        const double d2 = distance2(layer, x, k);
+  for (size_t i = 0; i < axis_d2[0].size(); ++i)
+    for (size_t j = 0; j < axis_d2[1].size(); ++j) {
+      const double d01 = axis_d2[0][i] + axis_d2[1][j];
+      if (d01 > r2) continue;
+      for (size_t l = 0; l < axis_d2[2].size(); ++l) {
+        const double d2 = d01 + axis_d2[2][l];
         if (d2 > r2) continue;
-        const double sc = score(k, d2);
+        const double sc = (axis_bits[0][i] + axis_bits[1][j] + axis_bits[2][l]) + distance_weight * d2 / r2;
         if (sc < best_score) {
           best_score = sc;
-          std::copy(k, k + 3, best);
+          best[0] = lo[0] + int64_t(i);
+          best[1] = lo[1] + int64_t(j);
+          best[2] = lo[2] + int64_t(l);
         }
       }
+    }
   for (int a = 0; a < 3; ++a)
     if (best[a] >= INT32_MIN && best[a] <= INT32_MAX) qv[a] = int32_t(best[a]);
 }
