@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "codec/error.h"
+#include "encoder/io/text_mesh_check.h"
 
 namespace dcurve {
 namespace fs = std::filesystem;
@@ -44,6 +45,7 @@ bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uin
   silence_openmesh();
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return fail(error, path + ": no such file");
+  if (!check_text_mesh_vertices(path, error)) return false;
   Mesh mesh;
   OpenMesh::IO::Options opt;
   if (!OpenMesh::IO::read_mesh(mesh, path, opt))
