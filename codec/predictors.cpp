@@ -128,6 +128,12 @@ Traversal build_traversal(const Model& model) {
   return model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);
 }
 
+const Traversal& traversal_for(const Model& model, const ResidualOptions& options, Traversal* owned) {
+  if (options.traversal) return *options.traversal;
+  *owned = build_traversal(model);
+  return *owned;
+}
+
 bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
                       const ResidualOptions& options) {
   auto ok = [&](uint32_t r) { return r < decoded.size() && r != f && decoded[r]; };

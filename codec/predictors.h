@@ -73,7 +73,13 @@ struct ResidualOptions {
   // Model predictor values, frame-major ((f * V + v) * 3 + axis), grid units; null when
   // the file has no motion model. Must be bit-identical on encoder and decoder.
   const std::vector<int32_t>* model_prediction = nullptr;
+  // build_traversal(model) of the model the call codes, when the caller reuses one across
+  // calls (it depends only on V and the faces or curves); null: each call builds its own.
+  const Traversal* traversal = nullptr;
 };
+
+// options.traversal when set, else build_traversal(model) stored in *owned.
+const Traversal& traversal_for(const Model& model, const ResidualOptions& options, Traversal* owned);
 
 // Whether `c` can be used for frame f: its reference frames are decoded (decoded[r] != 0,
 // decoded has frame_count entries) and distinct from f, Linear spans are bounded, supplied

@@ -334,7 +334,8 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
   if (q.size() != size_t(model.meta.vertex_count) * 3 * F ||
       (options.model_prediction && options.model_prediction->size() != q.size()))
     return {};
-  const Traversal trav = build_traversal(model);
+  Traversal owned;
+  const Traversal& trav = traversal_for(model, options, &owned);
   ByteWriter w;
   w.u8(kFormatVersion);
   w.u8(trav.from_faces ? 1 : 0);
@@ -423,7 +424,8 @@ bool decode_all(const Model& model, std::vector<int32_t>* q, PredictorPlan* plan
   const uint64_t stream_size = r.varint();
   if (!r.ok || stream_size != r.remaining()) return fail(error, "residual stream length does not match the payload");
   const uint8_t* stream = r.take(size_t(stream_size));
-  const Traversal trav = build_traversal(model);
+  Traversal owned;
+  const Traversal& trav = traversal_for(model, options, &owned);
   q->assign(total, 0);
   StreamReader coder(stream, size_t(stream_size));
   const bool ok = walk_frames<true>(model, trav, *plan, options, q->data(), coder);
@@ -465,7 +467,8 @@ std::vector<int64_t> residual_values(const Model& model, const std::vector<int32
   std::vector<int32_t> work(q);
   PredictorPlan p = plan;
   ResidualRecorder recorder{&out};
-  walk_frames<false>(model, build_traversal(model), p, options, work.data(), recorder);
+  Traversal owned;
+  walk_frames<false>(model, traversal_for(model, options, &owned), p, options, work.data(), recorder);
   return out;
 }
 

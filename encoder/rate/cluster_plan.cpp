@@ -136,7 +136,8 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
   const uint32_t S = std::max(cluster_size, 1u), clusters = cluster_count(V, S), M = std::max(motion_block, 1u);
   max_candidates = std::max(1u, std::min(max_candidates, kMaxCandidates));
   const size_t stride = size_t(V) * 3;
-  const Traversal trav = build_traversal(model);
+  Traversal owned;
+  const Traversal& trav = traversal_for(model, options, &owned);
   PredictorPlan plan;
   plan.order = order;
   plan.cluster_size = S;

@@ -62,13 +62,16 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, const std::vector<i
     for (SpatialMode s : modes) choices.insert(choices.end(), 3, PredictorChoice{PredictorKind::None, 0, 0, s});
     return uniform_plan(order, choices);
   };
+  const Traversal trav = build_traversal(pseudo);
+  ResidualOptions options;
+  options.traversal = &trav;
   std::vector<SpatialMode> modes(frames, SpatialMode::Off);
   parallel_for(frames, threads, [&](size_t f) {
     const std::vector<int32_t> one(values.begin() + std::ptrdiff_t(f * n), values.begin() + std::ptrdiff_t((f + 1) * n));
     size_t smallest = SIZE_MAX;
     for (uint8_t s = 0; s < kSpatialModeCount; ++s) {
       PredictorPlan plan = plan_of({0}, {SpatialMode(s)});
-      const size_t bytes = encode_residuals(pseudo, one, &plan).size();
+      const size_t bytes = encode_residuals(pseudo, one, &plan, options).size();
       if (bytes > 0 && bytes < smallest) {
         smallest = bytes;
         modes[f] = SpatialMode(s);
@@ -79,7 +82,7 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, const std::vector<i
   std::vector<uint32_t> order(frames);
   for (uint32_t f = 0; f < frames; ++f) order[f] = f;
   PredictorPlan plan = plan_of(order, modes);
-  return encode_residuals(pseudo, values, &plan);
+  return encode_residuals(pseudo, values, &plan, options);
 }
 
 }  // namespace

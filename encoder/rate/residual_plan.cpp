@@ -269,9 +269,12 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
 }  // namespace
 
 PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
-                                   double max_distance, std::vector<int32_t>* q, const ResidualOptions& options,
+                                   double max_distance, std::vector<int32_t>* q, const ResidualOptions& caller_options,
                                    const ResidualPlanOptions& po) {
-  const Traversal trav = build_traversal(model);
+  Traversal owned;
+  const Traversal& trav = traversal_for(model, caller_options, &owned);
+  ResidualOptions options = caller_options;  // every trial below reuses this traversal
+  options.traversal = &trav;
   // A hair inside the bound, so rounding in the error measurement cannot push it over.
   const double radius = max_distance * (1.0 - 1e-9);
   // Independent trials run in parallel; the first smallest wins, whatever the thread count.
