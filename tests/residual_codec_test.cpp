@@ -370,6 +370,14 @@ TEST(ResidualCodec, RandomClusterPlansRoundTripBitExactly) {
       PredictorPlan back;
       ASSERT_TRUE(decode_predictor_plan(m, &back, &err, {}, true)) << err;
       for (uint32_t f = 0; f < kFrames; ++f) EXPECT_EQ(back.frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
+      // A traversal the caller supplies (built once, reused) codes and decodes the same bytes.
+      const Traversal trav = build_traversal(m);
+      ResidualOptions reuse;
+      reuse.traversal = &trav;
+      EXPECT_EQ(encode_residuals(m, q, &plan, reuse), m.residual.payload);
+      std::vector<int32_t> again;
+      ASSERT_TRUE(decode_residuals(m, &again, &err, reuse)) << err;
+      EXPECT_EQ(again, q);
 
       // Corrupted copies decode exactly (a flip into an equivalent reference) or are refused.
       const std::vector<uint8_t> good = m.residual.payload;
