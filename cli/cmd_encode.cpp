@@ -15,7 +15,7 @@ Action add_encode(CLI::App& app) {
   struct Opts {
     std::string input, output;
     double tolerance = 1e-3;
-    bool json = false, no_connectivity = false, exact_faces = false;
+    bool json = false, no_connectivity = false, exact_faces = false, keep_all_motions = false;
     int threads = 0;
     std::string model = "none", low_rank = "auto";
     uint32_t segment_frames = 8, curve_points = 64;
@@ -37,6 +37,9 @@ Action add_encode(CLI::App& app) {
                  "only when the file gets smaller), off, or a component count 1..64 (always used)")
       ->check(CLI::IsMember({"auto", "off"}) | CLI::Range(1, 64))
       ->capture_default_str();
+  app.add_flag("--keep-all-motions", o->keep_all_motions,
+               "With a PDE model, keep every fitted motion even where it does not pay for its coefficients "
+               "(default: keep only those that make the file smaller)");
   app.add_option("--segment-frames", o->segment_frames, "PDE model time segment length, frames")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -65,6 +68,7 @@ Action add_encode(CLI::App& app) {
     eo.model = o->model == "pde8" ? ModelChoice::Pde8 : o->model == "pde32" ? ModelChoice::Pde32 : ModelChoice::None;
     eo.low_rank = o->low_rank == "auto" ? -1 : o->low_rank == "off" ? 0 : std::stoi(o->low_rank);
     eo.segment_frames = o->segment_frames;
+    eo.keep_all_motions = o->keep_all_motions;
     eo.curve_points = o->curve_points;
     eo.progress = progress_bar("encode");
     std::vector<uint8_t> bytes;
@@ -93,6 +97,8 @@ Action add_encode(CLI::App& app) {
                         {"encode_seconds", rep.encode_seconds},
                         {"model", o->model},
                         {"model_bytes", rep.model_bytes},
+                        {"motions_fitted", rep.motions_fitted},
+                        {"motions_kept", rep.motions_kept},
                         {"low_rank_components", rep.low_rank_components},
                         {"low_rank_bytes", rep.low_rank_bytes},
                         {"curve_fallback", rep.curve_fallback}};

@@ -32,6 +32,11 @@ struct EncodeOptions {
   // -1 automatic (kept only where the file gets smaller), 0 off, 1..64 that many components
   // always. Not combined with a PDE model (automatic turns off, a count is an error).
   int low_rank = -1;
+  // With a PDE model: keep every fitted motion even where it does not pay for its
+  // coefficients (in-betweens then follow the model everywhere; the file may be larger).
+  // Off: only paying motions are kept, and the file is the one without a PDE model when
+  // that is smaller (encoder/rate/motion_choice.h).
+  bool keep_all_motions = false;
   int threads = 0;            // 0: all hardware threads; output bytes never depend on it
   std::function<void(double)> progress;  // called with the fraction done in [0, 1]; may be empty
 };
@@ -49,6 +54,8 @@ struct EncodeReport {
   uint64_t model_bytes = 0;         // SEGS section before zstd, as written (0 without a model)
   uint32_t low_rank_components = 0; // K of the low-rank model in the file, 0 when none
   uint64_t low_rank_bytes = 0;      // its LRNK section as stored, header included
+  uint32_t motions_fitted = 0;      // PDE motions (segment, curve, axis) fitted, 0 without a model
+  uint32_t motions_kept = 0;        // of them, the non-Zero motions in the file
 };
 
 // Encodes `anim` into `out`. The returned error stats come from decoding `out` with the
