@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cmath>
 
 #include "codec/container.h"
@@ -15,6 +16,7 @@
 #include "encoder/curves/report.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/low_rank_choice.h"
+#include "encoder/rate/motion_alternatives.h"
 #include "encoder/rate/motion_choice.h"
 #include "encoder/rate/motion_model.h"
 #include "encoder/rate/residual_plan.h"
@@ -103,9 +105,10 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
 }
 
 // The encode without a PDE model: the residual layer alone, with a low-rank model where it
-// pays.
+// pays. `residual_only` (may be null) receives it before the low-rank choice: what a PDE
+// motion competes with inside a file, which cannot also carry a low-rank model.
 bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridStart& start, Model* m,
-                  std::string* error) {
+                  Model* residual_only, std::string* error) {
   *m = start.model;
   std::vector<int32_t> q = start.rounded;
   ResidualPlanOptions po;
@@ -113,6 +116,7 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   const PredictorPlan plan = choose_plan_and_grid(*m, anim.frames, start.snap, &q, {}, po);
   m->residual.payload = encode_residuals(*m, q, &plan);
   if (m->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
+  if (residual_only) *residual_only = *m;
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
   LowRankChoiceOptions lro;
@@ -120,21 +124,38 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   return choose_low_rank(m, anim.frames, start.rounded, start.snap, wo, lro, nullptr, error);
 }
 
-// The encode with the PDE motion model: fitted on every curve and segment, then only the
-// motions that pay are kept (encoder/rate/motion_choice.h); `plain` is what they must beat.
+// The encode with the PDE motion model: fitted on every curve and segment with each allowed
+// basis set and segment length, the estimated best of them per motion (one segmentation
+// for the file), then only the motions that pay (encoder/rate/motion_*.h); `plain`, the
+// residual layer alone, is what they must beat.
 bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const GridStart& start, const Model& plain,
                          Model* m, MotionChoiceReport* report, std::string* curve_fallback, std::string* error) {
   *m = start.model;
   // Without faces the plain encode has extracted the same curves already.
   m->curves = opt.connectivity ? file_curves(anim, opt, curve_fallback) : plain.curves;
-  MotionModelOptions mo;
-  mo.basis = opt.model == ModelChoice::Pde32 ? Basis::Pde32 : Basis::Pde8;
-  mo.segment_frames = opt.segment_frames;
-  mo.threads = opt.threads;
-  // A tenth of the tolerance: the residual layer absorbs it at the frames, and in-betweens
-  // stay within a tenth of the tolerance of the unrounded fit.
-  mo.coefficient_error = 0.1 * opt.tolerance * m->meta.diag;
-  if (!fit_motion_model(anim, m->curves, anim.frames[0], mo, &m->segments, error)) return false;
+  std::vector<Basis> bases = {Basis::Pde8};
+  if (opt.model == ModelChoice::Pde32) bases = {Basis::Pde32};
+  if (opt.model == ModelChoice::Pde) bases.push_back(Basis::Pde32);
+  std::vector<uint32_t> lengths(std::begin(kAutoSegmentFrames), std::end(kAutoSegmentFrames));
+  if (opt.segment_frames > 0) lengths = {opt.segment_frames};
+  std::vector<std::vector<Segment>> fitted;
+  for (uint32_t length : lengths)
+    for (Basis basis : bases) {
+      MotionModelOptions mo;
+      mo.basis = basis;
+      mo.segment_frames = length;
+      mo.threads = opt.threads;
+      // A tenth of the tolerance: the residual layer absorbs it at the frames, and
+      // in-betweens stay within a tenth of the tolerance of the unrounded fit.
+      mo.coefficient_error = 0.1 * opt.tolerance * m->meta.diag;
+      fitted.emplace_back();
+      if (!fit_motion_model(anim, m->curves, anim.frames[0], mo, &fitted.back(), error)) return false;
+    }
+  if (fitted.size() == 1) {
+    m->segments = std::move(fitted[0]);
+  } else if (!choose_motion_alternative(*m, plain, fitted, start.rounded, &m->segments, nullptr, error)) {
+    return false;
+  }
   if (opt.progress) opt.progress(0.7);
   ResidualPlanOptions po;
   po.threads = opt.threads;
@@ -151,7 +172,6 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   auto progress = [&](double f) { if (opt.progress) opt.progress(f); };
   if (!validate_animation(anim, error)) return false;
   if (!(opt.tolerance > 0 && opt.tolerance <= 0.5)) return fail(error, "tolerance must be in (0, 0.5]");
-  if (opt.segment_frames == 0) return fail(error, "segment length must be at least one frame");
   if (opt.curve_points < 2) return fail(error, "target curve length must be at least 2 points");
   if (opt.low_rank < -1 || opt.low_rank > 64) return fail(error, "low-rank setting must be -1 (auto), 0 (off) or 1..64");
   if (opt.model != ModelChoice::None && opt.low_rank > 0 && opt.keep_all_motions)
@@ -167,8 +187,9 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   plain_opt.model = ModelChoice::None;
   start.model.curves = file_curves(anim, plain_opt, &rep.curve_fallback);
   progress(0.1);
-  Model m;
-  if (!encode_plain(anim, opt, start, &m, error)) return false;
+  Model m, residual_only;
+  if (!encode_plain(anim, opt, start, &m, opt.model == ModelChoice::None ? nullptr : &residual_only, error))
+    return false;
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
   *out = write_container(m, wo);
@@ -177,7 +198,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     Model pde;
     MotionChoiceReport mrep;
     std::string curve_fallback = rep.curve_fallback;
-    if (!encode_with_motions(anim, opt, start, m, &pde, &mrep, &curve_fallback, error)) return false;
+    if (!encode_with_motions(anim, opt, start, residual_only, &pde, &mrep, &curve_fallback, error)) return false;
     rep.motions_fitted = mrep.fitted;
     if (mrep.kept > 0) {
       std::vector<uint8_t> with = write_container(pde, wo);

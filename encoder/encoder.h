@@ -16,12 +16,18 @@ enum class ModelChoice {
   None,  // no PDE model: in-betweens are linear blends of the exact frames
   Pde8,  // 2022 paper's 8-term solutions per curve, axis and segment
   Pde32, // 2024 paper's 32-term solutions
+  Pde,   // either, chosen per segment, curve and axis by the rate control
 };
+
+// Segment lengths the rate control chooses from (the first wins ties).
+constexpr uint32_t kAutoSegmentFrames[] = {8, 4, 16};
 
 struct EncodeOptions {
   double tolerance = 1e-3;    // max error, fraction of the rest-pose bounding-box diagonal, in (0, 0.5]
   ModelChoice model = ModelChoice::None;
-  uint32_t segment_frames = 8;  // PDE model segment length in frames, >= 1
+  // PDE model segment length in frames, >= 1; 0: the rate control chooses among
+  // kAutoSegmentFrames.
+  uint32_t segment_frames = 0;
   uint32_t curve_points = 64;   // target vertices per curve, >= 2
   bool connectivity = true;   // store faces in the file
   // Keep the input's triangle order and corner rotation. Off: triangles are stored in the

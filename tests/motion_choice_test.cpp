@@ -8,7 +8,9 @@
 #include "codec/container.h"
 #include "decoder/model_prediction.h"
 #include "encoder/encoder.h"
+#include "encoder/rate/motion_alternatives.h"
 #include "encoder/rate/motion_choice.h"
+#include "encoder/rate/motion_costs.h"
 #include "encoder/sim/scene.h"
 
 namespace dcurve {
@@ -84,9 +86,10 @@ Synthetic make_synthetic(int threads) {
   return s;
 }
 
-// Negates the motions of the odd strips: their Model prediction is then far off.
-void spoil_odd_strips(Model* m) {
-  for (uint32_t c = 1; c < kStrips; c += 2)
+// Negates the motions of the odd (first = 1) or even (first = 0) strips: their Model
+// prediction is then far off.
+void spoil_odd_strips(Model* m, uint32_t first = 1) {
+  for (uint32_t c = first; c < kStrips; c += 2)
     for (int a = 0; a < 3; ++a)
       for (float& x : m->segments[0].motion[c * 3 + a].coeffs) x = -x;
 }
@@ -156,9 +159,32 @@ TEST(MotionChoice, SameChoiceForAnyThreadCount) {
   EXPECT_EQ(write_container(one.model), write_container(two.model));
 }
 
-// On a simulated scene the fitted motions do not pay: the encode with --model pde8 is no
+// Each strip's good motion comes from a different fitted set; a split into two segments
+// with no motions at all is listed first and must lose on the estimate.
+TEST(MotionChoice, AlternativesMixTheBestMotionOfEachSlot) {
+  Synthetic s = make_synthetic(1);
+  Model odd_spoiled = s.model, even_spoiled = s.model;
+  spoil_odd_strips(&odd_spoiled, 1);
+  spoil_odd_strips(&even_spoiled, 0);
+  std::vector<Segment> split(2);
+  split[0].last_frame = split[1].first_frame = 2;
+  split[1].last_frame = kFrames - 1;
+  for (Segment& seg : split) seg.motion.resize(kStrips * 3);
+  const std::vector<std::vector<Segment>> fitted = {split, odd_spoiled.segments, even_spoiled.segments};
+  std::vector<Segment> chosen;
+  MotionAlternativesReport rep;
+  std::string err;
+  ASSERT_TRUE(choose_motion_alternative(s.model, s.plain, fitted, s.rounded, &chosen, &rep, &err)) << err;
+  EXPECT_EQ(rep.segmentation, 1u);
+  EXPECT_LT(rep.estimated_bytes, rep.baseline_bytes);
+  ASSERT_EQ(chosen.size(), 1u);
+  for (size_t k = 0; k < chosen[0].motion.size(); ++k)
+    EXPECT_EQ(chosen[0].motion[k].coeffs, s.model.segments[0].motion[k].coeffs) << k;
+}
+
+// On a simulated scene the fitted motions do not pay: the encode with --model pde is no
 // larger than without a model, decodes within the tolerance and does not depend on threads.
-TEST(MotionChoice, Pde8EncodeIsNeverLargerThanNone) {
+TEST(MotionChoice, PdeEncodeIsNeverLargerThanNone) {
   Scene scene;
   std::string err;
   ASSERT_TRUE(builtin_scene("rope-small", &scene, &err)) << err;
@@ -171,8 +197,7 @@ TEST(MotionChoice, Pde8EncodeIsNeverLargerThanNone) {
   std::vector<uint8_t> first;
   for (int threads : {1, 2}) {
     EncodeOptions opt;
-    opt.model = ModelChoice::Pde8;
-    opt.segment_frames = 4;
+    opt.model = ModelChoice::Pde;  // both bases and every automatic segment length
     opt.threads = threads;
     std::vector<uint8_t> bytes;
     EncodeReport rep;

@@ -30,11 +30,6 @@ struct MotionChoiceReport {
   double estimated_saving = 0;  // residual bytes the kept motions are estimated to save
 };
 
-// The Model predictor of every frame from `model` as the file stores it (written and read
-// back: the in-memory coefficients differ in the last bits), grid units; empty when the
-// model has no Model prediction.
-bool stored_model_prediction(const Model& model, std::vector<int32_t>* prediction, std::string* error);
-
 // Drops the motions of `model` that do not pay, and codes its residual payload.
 //   model: curves, faces, grid (residual step and origin) and fitted segments; its payload
 //     is replaced. When no motion pays, every motion becomes Zero and the payload is left
