@@ -42,7 +42,7 @@ Action add_encode(CLI::App& app) {
                "With a PDE model, keep every fitted motion even where it does not pay for its coefficients "
                "(default: keep only those that make the file smaller)");
   app.add_option("--segment-frames", o->segment_frames,
-                 "PDE model time segment length, frames, or auto (the smallest file of 4, 8 and 16)")
+                 "PDE model time segment length, frames, or auto (chosen by the rate control among 4, 8 and 16)")
       ->check(CLI::IsMember({"auto"}) | CLI::Range(1, 100000))
       ->capture_default_str();
   app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")

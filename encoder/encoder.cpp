@@ -151,12 +151,15 @@ bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const 
       fitted.emplace_back();
       if (!fit_motion_model(anim, m->curves, anim.frames[0], mo, &fitted.back(), error)) return false;
     }
-  if (fitted.size() == 1) {
-    m->segments = std::move(fitted[0]);
-  } else if (!choose_motion_alternative(*m, plain, fitted, start.rounded, &m->segments, nullptr, error)) {
-    return false;
-  }
+  MotionAlternativesReport estimate;
+  if (!choose_motion_alternative(*m, plain, fitted, start.rounded, &m->segments, &estimate, error)) return false;
   if (opt.progress) opt.progress(0.7);
+  if (!opt.keep_all_motions && estimate.promising == 0) {
+    // No motion comes near paying: the residual plan that would confirm it is skipped.
+    *report = MotionChoiceReport();
+    report->fitted = estimate.motions;
+    return true;
+  }
   ResidualPlanOptions po;
   po.threads = opt.threads;
   MotionChoiceOptions mco;

@@ -177,6 +177,8 @@ TEST(MotionChoice, AlternativesMixTheBestMotionOfEachSlot) {
   ASSERT_TRUE(choose_motion_alternative(s.model, s.plain, fitted, s.rounded, &chosen, &rep, &err)) << err;
   EXPECT_EQ(rep.segmentation, 1u);
   EXPECT_LT(rep.estimated_bytes, rep.baseline_bytes);
+  EXPECT_EQ(rep.motions, kStrips * 3);
+  EXPECT_EQ(rep.promising, kStrips * 3);
   ASSERT_EQ(chosen.size(), 1u);
   for (size_t k = 0; k < chosen[0].motion.size(); ++k)
     EXPECT_EQ(chosen[0].motion[k].coeffs, s.model.segments[0].motion[k].coeffs) << k;

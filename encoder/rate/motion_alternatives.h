@@ -15,6 +15,10 @@ struct MotionAlternativesReport {
   size_t segmentation = 0;       // index into the alternatives of the chosen segmentation's first set
   double estimated_bytes = 0;    // its estimate: residual bytes of the values plus motion bytes
   double baseline_bytes = 0;     // the baseline's residual bytes of the same values
+  uint32_t motions = 0;          // non-Zero motions chosen
+  // Of them, those whose estimate is near enough the baseline's bytes that a residual plan
+  // may find them paying; 0: no plan needs to be tried.
+  uint32_t promising = 0;
 };
 
 // Chooses among `fitted` (each a segment list tiling the frames for model.curves, as from
