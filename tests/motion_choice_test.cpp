@@ -190,7 +190,7 @@ TEST(MotionChoice, PdeEncodeIsNeverLargerThanNone) {
   Scene scene;
   std::string err;
   ASSERT_TRUE(builtin_scene("rope-small", &scene, &err)) << err;
-  scene.frames = 8;
+  scene.frames = 6;
   Animation anim;
   ASSERT_TRUE(simulate_scene(scene, &anim, {}, &err)) << err;
   EncodeOptions none;
