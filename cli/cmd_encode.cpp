@@ -15,10 +15,10 @@ Action add_encode(CLI::App& app) {
   struct Opts {
     std::string input, output;
     double tolerance = 1e-3;
-    bool json = false, no_connectivity = false, exact_faces = false;
+    bool json = false, no_connectivity = false, exact_faces = false, keep_all_motions = false;
     int threads = 0;
-    std::string model = "none", low_rank = "auto";
-    uint32_t segment_frames = 8, curve_points = 64;
+    std::string model = "none", low_rank = "auto", segment_frames = "auto";
+    uint32_t curve_points = 64;
   };
   auto o = std::make_shared<Opts>();
   app.add_option("input", o->input, "Folder of frames (OBJ/PLY/OFF, sorted by name) or a scene file (.json)")
@@ -28,17 +28,22 @@ Action add_encode(CLI::App& app) {
       ->check(CLI::Range(1e-7, 0.5))
       ->capture_default_str();
   app.add_option("--model", o->model,
-                 "Motion model beside the exact frames: none (in-betweens blend linearly), pde8 or pde32 "
-                 "(in-betweens follow the fitted PDE curves)")
-      ->check(CLI::IsMember({"none", "pde8", "pde32"}))
+                 "Motion model beside the exact frames: none (in-betweens blend linearly), pde8, pde32 or pde "
+                 "(either, chosen per curve and segment; in-betweens follow the fitted PDE curves where the "
+                 "rate control keeps them)")
+      ->check(CLI::IsMember({"none", "pde8", "pde32", "pde"}))
       ->capture_default_str();
   app.add_option("--low-rank", o->low_rank,
                  "Low-rank (PCA) model of the frames that the residual layer may predict from: auto (kept "
                  "only when the file gets smaller), off, or a component count 1..64 (always used)")
       ->check(CLI::IsMember({"auto", "off"}) | CLI::Range(1, 64))
       ->capture_default_str();
-  app.add_option("--segment-frames", o->segment_frames, "PDE model time segment length, frames")
-      ->check(CLI::Range(1, 100000))
+  app.add_flag("--keep-all-motions", o->keep_all_motions,
+               "With a PDE model, keep every fitted motion even where it does not pay for its coefficients "
+               "(default: keep only those that make the file smaller)");
+  app.add_option("--segment-frames", o->segment_frames,
+                 "PDE model time segment length, frames, or auto (chosen by the rate control among 4, 8 and 16)")
+      ->check(CLI::IsMember({"auto"}) | CLI::Range(1, 100000))
       ->capture_default_str();
   app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")
       ->check(CLI::Range(2, 1000000))
@@ -62,9 +67,13 @@ Action add_encode(CLI::App& app) {
     eo.connectivity = !o->no_connectivity;
     eo.exact_face_order = o->exact_faces;
     eo.threads = o->threads;
-    eo.model = o->model == "pde8" ? ModelChoice::Pde8 : o->model == "pde32" ? ModelChoice::Pde32 : ModelChoice::None;
+    eo.model = o->model == "pde8"    ? ModelChoice::Pde8
+               : o->model == "pde32" ? ModelChoice::Pde32
+               : o->model == "pde"   ? ModelChoice::Pde
+                                     : ModelChoice::None;
     eo.low_rank = o->low_rank == "auto" ? -1 : o->low_rank == "off" ? 0 : std::stoi(o->low_rank);
-    eo.segment_frames = o->segment_frames;
+    eo.segment_frames = o->segment_frames == "auto" ? 0 : uint32_t(std::stoul(o->segment_frames));
+    eo.keep_all_motions = o->keep_all_motions;
     eo.curve_points = o->curve_points;
     eo.progress = progress_bar("encode");
     std::vector<uint8_t> bytes;
@@ -93,6 +102,8 @@ Action add_encode(CLI::App& app) {
                         {"encode_seconds", rep.encode_seconds},
                         {"model", o->model},
                         {"model_bytes", rep.model_bytes},
+                        {"motions_fitted", rep.motions_fitted},
+                        {"motions_kept", rep.motions_kept},
                         {"low_rank_components", rep.low_rank_components},
                         {"low_rank_bytes", rep.low_rank_bytes},
                         {"curve_fallback", rep.curve_fallback}};

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cmath>
 
 #include "codec/container.h"
@@ -15,6 +16,8 @@
 #include "encoder/curves/report.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/low_rank_choice.h"
+#include "encoder/rate/motion_alternatives.h"
+#include "encoder/rate/motion_choice.h"
 #include "encoder/rate/motion_model.h"
 #include "encoder/rate/residual_plan.h"
 
@@ -68,87 +71,150 @@ bool measure_decoded(const std::vector<uint8_t>& bytes, const Animation& anim, E
   return true;
 }
 
-}  // namespace
+// The file's curves: extracted when a motion model or a file without faces reads them;
+// otherwise one-vertex curves, which cost a few bytes where the extracted ones took 18 % of
+// a horse-gallop file. Extraction failing (non-manifold input) also gives one-vertex curves.
+Curves file_curves(const Animation& anim, const EncodeOptions& opt, std::string* fallback) {
+  if (opt.model == ModelChoice::None && opt.connectivity) return singleton_curves(anim.vertex_count);
+  CurveOptions co;
+  co.target_points = opt.curve_points;
+  Curves curves;
+  if (!extract_curves(anim.frames[0], anim.vertex_count, anim.faces, co, &curves, fallback))
+    return singleton_curves(anim.vertex_count);
+  fallback->clear();
+  return curves;
+}
 
-bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vector<uint8_t>* out,
-                      EncodeReport* report, std::string* error) {
-  auto start = std::chrono::steady_clock::now();
-  auto progress = [&](double f) { if (opt.progress) opt.progress(f); };
-  if (!validate_animation(anim, error)) return false;
-  if (!(opt.tolerance > 0 && opt.tolerance <= 0.5)) return fail(error, "tolerance must be in (0, 0.5]");
-  if (opt.segment_frames == 0) return fail(error, "segment length must be at least one frame");
-  if (opt.curve_points < 2) return fail(error, "target curve length must be at least 2 points");
-  if (opt.low_rank < -1 || opt.low_rank > 64) return fail(error, "low-rank setting must be -1 (auto), 0 (off) or 1..64");
+// What both encodes share: metadata, faces, the residual grid and its rounded values.
+struct GridStart {
+  Model model;
+  std::vector<int32_t> rounded;
+  double snap = 0;
+};
+
+bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, std::string* error) {
+  Model& m = out->model;
   const double L = bbox_diagonal(anim.frames[0]);
-  if (!(L > 0)) return fail(error, "rest pose has a zero bounding box (all vertices coincide)");
-
-  const uint32_t V = anim.vertex_count, F = uint32_t(anim.frames.size());
-  EncodeReport rep;
-  Model m;
-  m.meta = {V, F, anim.frame_rate, opt.tolerance, L, ""};
+  m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), anim.frame_rate, opt.tolerance, L, ""};
   // The residual layer predicts from mesh neighbours when the file stores faces, and from
   // curve neighbours otherwise: it must see exactly what the decoder will.
   if (opt.connectivity) m.faces = opt.exact_face_order ? anim.faces : smaller_face_order(anim.faces);
-
-  // Curves carry the motion model and, in a file without faces, the residual layer's
-  // neighbours; otherwise the decoder never reads them, and one-vertex curves cost a few
-  // bytes where the extracted ones took 18 % of a horse-gallop file.
-  if (opt.model == ModelChoice::None && opt.connectivity) {
-    m.curves = singleton_curves(V);
-  } else {
-    CurveOptions co;
-    co.target_points = opt.curve_points;
-    std::string curve_error;
-    if (!extract_curves(anim.frames[0], V, anim.faces, co, &m.curves, &curve_error)) {
-      m.curves = singleton_curves(V);
-      rep.curve_fallback = curve_error;
-    }
-  }
-  progress(0.1);
-
-  if (opt.model != ModelChoice::None) {
-    MotionModelOptions mo;
-    mo.basis = opt.model == ModelChoice::Pde32 ? Basis::Pde32 : Basis::Pde8;
-    mo.segment_frames = opt.segment_frames;
-    mo.threads = opt.threads;
-    // A tenth of the tolerance: the residual layer absorbs it at the frames, and in-betweens
-    // stay within a tenth of the tolerance of the unrounded fit.
-    mo.coefficient_error = 0.1 * opt.tolerance * L;
-    if (!fit_motion_model(anim, m.curves, anim.frames[0], mo, &m.segments, error)) return false;
-  }
-  progress(0.6);
-
   m.residual = make_grid(anim, opt.tolerance * L);
-  std::vector<int32_t> q, prediction;
-  if (!quantize_to_grid(anim, m.residual, &q, error)) return false;
-  const std::vector<int32_t> rounded = q;
-  ResidualOptions ro;
-  if (has_model_prediction(m)) {
-    // The model's own frames on the grid: the residual layer's Model predictor, computed
-    // by the decoder's code from the model as the file stores it (written and read back:
-    // the in-memory model differs in the last bits), so both sides agree bit for bit.
-    const std::vector<uint8_t> stored_bytes = write_container(m);
-    Model stored;
-    if (!read_container(stored_bytes.data(), stored_bytes.size(), &stored, error)) return false;
-    if (!model_grid_prediction(stored, UINT64_MAX, &prediction, error)) return false;
-    ro.model_prediction = &prediction;
-  }
-  const double snap = snap_distance(anim, opt.tolerance * L);
+  out->snap = snap_distance(anim, opt.tolerance * L);
+  return quantize_to_grid(anim, m.residual, &out->rounded, error);
+}
+
+// The encode without a PDE model: the residual layer alone, with a low-rank model where it
+// pays. `residual_only` (may be null) receives it before the low-rank choice: what a PDE
+// motion competes with inside a file, which cannot also carry a low-rank model.
+bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridStart& start, Model* m,
+                  Model* residual_only, std::string* error) {
+  *m = start.model;
+  std::vector<int32_t> q = start.rounded;
   ResidualPlanOptions po;
   po.threads = opt.threads;
-  const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, snap, &q, ro, po);
-  m.residual.payload = encode_residuals(m, q, &plan, ro);
-  if (m.residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
-  progress(0.75);
-
+  const PredictorPlan plan = choose_plan_and_grid(*m, anim.frames, start.snap, &q, {}, po);
+  m->residual.payload = encode_residuals(*m, q, &plan);
+  if (m->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
+  if (residual_only) *residual_only = *m;
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
   LowRankChoiceOptions lro;
   lro.components = opt.low_rank;
   lro.threads = opt.threads;
-  if (!choose_low_rank(&m, anim.frames, rounded, snap, wo, lro, nullptr, error)) return false;
-  progress(0.9);
+  return choose_low_rank(m, anim.frames, start.rounded, start.snap, wo, lro, nullptr, error);
+}
+
+// The encode with the PDE motion model: fitted on every curve and segment with each allowed
+// basis set and segment length, the estimated best of them per motion (one segmentation
+// for the file), then only the motions that pay (encoder/rate/motion_*.h); `plain`, the
+// residual layer alone, is what they must beat.
+bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const GridStart& start, const Model& plain,
+                         Model* m, MotionChoiceReport* report, std::string* curve_fallback, std::string* error) {
+  *m = start.model;
+  // Without faces the plain encode has extracted the same curves already.
+  m->curves = opt.connectivity ? file_curves(anim, opt, curve_fallback) : plain.curves;
+  std::vector<Basis> bases = {Basis::Pde8};
+  if (opt.model == ModelChoice::Pde32) bases = {Basis::Pde32};
+  if (opt.model == ModelChoice::Pde) bases.push_back(Basis::Pde32);
+  std::vector<uint32_t> lengths(std::begin(kAutoSegmentFrames), std::end(kAutoSegmentFrames));
+  if (opt.segment_frames > 0) lengths = {opt.segment_frames};
+  std::vector<std::vector<Segment>> fitted;
+  for (uint32_t length : lengths)
+    for (Basis basis : bases) {
+      MotionModelOptions mo;
+      mo.basis = basis;
+      mo.segment_frames = length;
+      mo.threads = opt.threads;
+      // A tenth of the tolerance: the residual layer absorbs it at the frames, and
+      // in-betweens stay within a tenth of the tolerance of the unrounded fit.
+      mo.coefficient_error = 0.1 * opt.tolerance * m->meta.diag;
+      fitted.emplace_back();
+      if (!fit_motion_model(anim, m->curves, anim.frames[0], mo, &fitted.back(), error)) return false;
+    }
+  MotionAlternativesReport estimate;
+  if (!choose_motion_alternative(*m, plain, fitted, start.rounded, &m->segments, &estimate, error)) return false;
+  if (opt.progress) opt.progress(0.7);
+  if (!opt.keep_all_motions && estimate.promising == 0) {
+    // No motion comes near paying: the residual plan that would confirm it is skipped.
+    *report = MotionChoiceReport();
+    report->fitted = estimate.motions;
+    return true;
+  }
+  ResidualPlanOptions po;
+  po.threads = opt.threads;
+  MotionChoiceOptions mco;
+  mco.keep_all = opt.keep_all_motions;
+  return choose_motions(m, plain, anim.frames, start.rounded, start.snap, po, mco, report, error);
+}
+
+}  // namespace
+
+bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vector<uint8_t>* out,
+                      EncodeReport* report, std::string* error) {
+  auto start_time = std::chrono::steady_clock::now();
+  auto progress = [&](double f) { if (opt.progress) opt.progress(f); };
+  if (!validate_animation(anim, error)) return false;
+  if (!(opt.tolerance > 0 && opt.tolerance <= 0.5)) return fail(error, "tolerance must be in (0, 0.5]");
+  if (opt.curve_points < 2) return fail(error, "target curve length must be at least 2 points");
+  if (opt.low_rank < -1 || opt.low_rank > 64) return fail(error, "low-rank setting must be -1 (auto), 0 (off) or 1..64");
+  if (opt.model != ModelChoice::None && opt.low_rank > 0 && opt.keep_all_motions)
+    return fail(error, "a low-rank model cannot be combined with a PDE motion model");
+  if (!(bbox_diagonal(anim.frames[0]) > 0)) return fail(error, "rest pose has a zero bounding box (all vertices coincide)");
+
+  EncodeReport rep;
+  GridStart start;
+  if (!start_model(anim, opt, &start, error)) return false;
+  // The file without a PDE model comes first: with --model none it is the file, otherwise
+  // the motion model has to beat it, value by value and as a whole file.
+  EncodeOptions plain_opt = opt;
+  plain_opt.model = ModelChoice::None;
+  start.model.curves = file_curves(anim, plain_opt, &rep.curve_fallback);
+  progress(0.1);
+  Model m, residual_only;
+  if (!encode_plain(anim, opt, start, &m, opt.model == ModelChoice::None ? nullptr : &residual_only, error))
+    return false;
+  WriteOptions wo;
+  wo.connectivity = opt.connectivity;
   *out = write_container(m, wo);
+  progress(opt.model == ModelChoice::None ? 0.9 : 0.5);
+  if (opt.model != ModelChoice::None) {
+    Model pde;
+    MotionChoiceReport mrep;
+    std::string curve_fallback = rep.curve_fallback;
+    if (!encode_with_motions(anim, opt, start, residual_only, &pde, &mrep, &curve_fallback, error)) return false;
+    rep.motions_fitted = mrep.fitted;
+    if (mrep.kept > 0) {
+      std::vector<uint8_t> with = write_container(pde, wo);
+      if (opt.keep_all_motions || with.size() < out->size()) {
+        out->swap(with);
+        m = std::move(pde);
+        rep.motions_kept = mrep.kept;
+        rep.curve_fallback = curve_fallback;
+      }
+    }
+    progress(0.9);
+  }
 
   if (!measure_decoded(*out, anim, &rep.error, error)) return false;
   if (rep.error.max_error > opt.tolerance)
@@ -165,12 +231,12 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     if (s.tag == "SEGS" && !m.segments.empty()) rep.model_bytes = s.raw_bytes;
   }
   rep.motion_bytes = rep.bytes - rep.connectivity_bytes;
-  rep.vertices = V;
-  rep.frames = F;
+  rep.vertices = anim.vertex_count;
+  rep.frames = uint32_t(anim.frames.size());
   rep.segments = uint32_t(m.segments.size());
-  rep.bpvf = 8.0 * double(rep.bytes) / (double(V) * F);
+  rep.bpvf = 8.0 * double(rep.bytes) / (double(rep.vertices) * rep.frames);
   rep.curves = curve_report(m.curves, anim.frames[0]);
-  rep.encode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  rep.encode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   progress(1.0);
   if (report) *report = rep;
   return true;

@@ -16,12 +16,18 @@ enum class ModelChoice {
   None,  // no PDE model: in-betweens are linear blends of the exact frames
   Pde8,  // 2022 paper's 8-term solutions per curve, axis and segment
   Pde32, // 2024 paper's 32-term solutions
+  Pde,   // either, chosen per segment, curve and axis by the rate control
 };
+
+// Segment lengths the rate control chooses from (the first wins ties).
+constexpr uint32_t kAutoSegmentFrames[] = {8, 4, 16};
 
 struct EncodeOptions {
   double tolerance = 1e-3;    // max error, fraction of the rest-pose bounding-box diagonal, in (0, 0.5]
   ModelChoice model = ModelChoice::None;
-  uint32_t segment_frames = 8;  // PDE model segment length in frames, >= 1
+  // PDE model segment length in frames, >= 1; 0: the rate control chooses among
+  // kAutoSegmentFrames.
+  uint32_t segment_frames = 0;
   uint32_t curve_points = 64;   // target vertices per curve, >= 2
   bool connectivity = true;   // store faces in the file
   // Keep the input's triangle order and corner rotation. Off: triangles are stored in the
@@ -32,6 +38,11 @@ struct EncodeOptions {
   // -1 automatic (kept only where the file gets smaller), 0 off, 1..64 that many components
   // always. Not combined with a PDE model (automatic turns off, a count is an error).
   int low_rank = -1;
+  // With a PDE model: keep every fitted motion even where it does not pay for its
+  // coefficients (in-betweens then follow the model everywhere; the file may be larger).
+  // Off: only paying motions are kept, and the file is the one without a PDE model when
+  // that is smaller (encoder/rate/motion_choice.h).
+  bool keep_all_motions = false;
   int threads = 0;            // 0: all hardware threads; output bytes never depend on it
   std::function<void(double)> progress;  // called with the fraction done in [0, 1]; may be empty
 };
@@ -49,6 +60,8 @@ struct EncodeReport {
   uint64_t model_bytes = 0;         // SEGS section before zstd, as written (0 without a model)
   uint32_t low_rank_components = 0; // K of the low-rank model in the file, 0 when none
   uint64_t low_rank_bytes = 0;      // its LRNK section as stored, header included
+  uint32_t motions_fitted = 0;      // PDE motions (segment, curve, axis) fitted, 0 without a model
+  uint32_t motions_kept = 0;        // of them, the non-Zero motions in the file
 };
 
 // Encodes `anim` into `out`. The returned error stats come from decoding `out` with the

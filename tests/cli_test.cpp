@@ -27,6 +27,7 @@ TEST(Cli, BadUsageExitsTwo) {
   EXPECT_EQ(run_cli("frobnicate").exit_code, 2);
   EXPECT_EQ(run_cli("encode").exit_code, 2);                                // missing input
   EXPECT_EQ(run_cli("encode x -o y --tolerance 7").exit_code, 2);          // out of range
+  EXPECT_EQ(run_cli("encode x -o y --segment-frames often").exit_code, 2);  // neither auto nor a count
   EXPECT_EQ(run_cli("decode a.dcrv -o d --frames 3 --t 0.5").exit_code, 2);  // exclusive options
 }
 
@@ -134,6 +135,13 @@ TEST(Cli, EncodeDecodeInfoEndToEnd) {
   EXPECT_EQ(exact.faces, anim.faces);
   ASSERT_EQ(run_cli("decode " + dir / "c.dcrv -o " + dir / "one --t 0.5 --format ply").exit_code, 0);
   EXPECT_TRUE(std::filesystem::exists(dir / "one/frame_00000.ply"));
+  // A PDE model whose motions do not pay leaves the file no larger than without one.
+  CommandResult p = run_cli("encode " + dir / "in" + " -o " + dir / "p.dcrv --model pde --segment-frames auto --json");
+  ASSERT_EQ(p.exit_code, 0) << p.output;
+  const nlohmann::json with = nlohmann::json::parse(p.output), without = nlohmann::json::parse(e.output);
+  EXPECT_GT(with["motions_fitted"].get<int>(), 0);
+  EXPECT_LE(with["motions_kept"].get<int>(), with["motions_fitted"].get<int>());
+  EXPECT_LE(with["bytes"].get<int>(), without["bytes"].get<int>());
 }
 
 }  // namespace

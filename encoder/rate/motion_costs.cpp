@@ -1,0 +1,121 @@
+#include "encoder/rate/motion_costs.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "codec/bytes.h"
+#include "codec/container.h"
+#include "codec/error.h"
+#include "decoder/model_prediction.h"
+
+namespace dcurve {
+namespace {
+
+constexpr int kClasses = 2 * 41 + 1;
+
+int exponent_class(int64_t r, int* exponent) {
+  *exponent = 0;
+  if (r == 0) return 0;
+  uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
+  int e = 0;
+  while (m >>= 1) ++e;
+  e = std::min(e, 40);
+  *exponent = e;
+  return 1 + 2 * e + (r < 0);
+}
+
+}  // namespace
+
+double ValueCosts::residual_bits(int64_t r) const {
+  int e;
+  const int k = exponent_class(r, &e);
+  return class_bits[size_t(k)] + e;
+}
+
+bool value_costs(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
+                 const ResidualOptions& ro, ValueCosts* out, std::string* error) {
+  const uint32_t V = model.meta.vertex_count;
+  const size_t n = size_t(V) * 3;
+  const std::vector<int64_t> r = residual_values(model, q, plan, ro);
+  if (r.size() != n * plan.order.size() || plan.frames.size() != model.meta.frame_count)
+    return fail(error, "internal error: residual values do not match the plan");
+  std::vector<double> hist(kClasses, 0.0);
+  for (int64_t x : r) {
+    int e;
+    hist[size_t(exponent_class(x, &e))] += 1;
+  }
+  // Half a count for classes never seen: other predictions of the same values may use them.
+  out->class_bits.assign(kClasses, 0.0);
+  for (int k = 0; k < kClasses; ++k)
+    out->class_bits[size_t(k)] = -std::log2((hist[size_t(k)] + 0.5) / (double(r.size()) + 0.5 * kClasses));
+  const Traversal trav = build_traversal(model);
+  out->bits.assign(q.size(), 0.f);
+  out->by_model.assign(q.size(), 0);
+  for (size_t k = 0; k < plan.order.size(); ++k) {
+    const uint32_t f = plan.order[k];
+    const FramePredictors& fp = plan.frames[f];
+    for (uint32_t pos = 0; pos < V; ++pos) {
+      const uint32_t cluster = pos / std::max(plan.cluster_size, 1u);
+      const size_t j = fp.cluster_candidate.empty() ? 0 : fp.cluster_candidate[cluster];
+      const size_t at = (size_t(f) * V + trav.order[pos]) * 3;
+      for (int a = 0; a < 3; ++a) {
+        out->bits[at + size_t(a)] = float(out->residual_bits(r[k * n + size_t(pos) * 3 + size_t(a)]));
+        out->by_model[at + size_t(a)] = fp.candidates[j][size_t(a)].kind == PredictorKind::Model;
+      }
+    }
+  }
+  return true;
+}
+
+double motion_record_bytes(const CurveMotion& m) {
+  if (m.basis == Basis::Zero) return 0;
+  double bytes = 1 + 4 + 4 + 1;  // basis_case, time_param, space_param, coeff_exponent
+  for (float c : m.coeffs) {
+    uint64_t z = zigzag_encode(int64_t(std::ldexp(double(c), -m.coeff_exponent)));
+    do {
+      ++bytes;
+      z >>= 7;
+    } while (z);
+  }
+  return bytes;
+}
+
+double segs_compression(const Model& model, std::string* error) {
+  const std::vector<uint8_t> bytes = write_container(model);
+  Model back;
+  std::vector<SectionInfo> sections;
+  if (!read_container(bytes.data(), bytes.size(), &back, error, &sections)) return -1;
+  for (const SectionInfo& s : sections)
+    if (s.tag == "SEGS" && s.raw_bytes > 0) return double(s.stored_bytes) / double(s.raw_bytes);
+  return 1;
+}
+
+bool coded_value_costs(const Model& baseline, ValueCosts* out, std::string* error) {
+  std::vector<int32_t> prediction, q;
+  ResidualOptions ro;
+  if (has_model_prediction(baseline)) {
+    if (!model_grid_prediction(baseline, UINT64_MAX, &prediction, error)) return false;
+    ro.model_prediction = &prediction;
+  }
+  PredictorPlan plan;
+  if (!decode_residuals(baseline, &q, error, ro) || !decode_predictor_plan(baseline, &plan, error, ro, true))
+    return false;
+  return value_costs(baseline, q, plan, ro, out, error);
+}
+
+std::pair<uint32_t, uint32_t> predicted_frames(const Model& model, size_t s) {
+  const Segment& seg = model.segments[s];
+  const bool shared = s + 1 < model.segments.size() && seg.last_frame > seg.first_frame;
+  return {seg.first_frame, shared ? seg.last_frame - 1 : seg.last_frame};
+}
+
+bool stored_model_prediction(const Model& model, std::vector<int32_t>* prediction, std::string* error) {
+  prediction->clear();
+  if (!has_model_prediction(model)) return true;
+  const std::vector<uint8_t> bytes = write_container(model);
+  Model stored;
+  if (!read_container(bytes.data(), bytes.size(), &stored, error)) return false;
+  return model_grid_prediction(stored, UINT64_MAX, prediction, error);
+}
+
+}  // namespace dcurve

@@ -1,0 +1,51 @@
+// Estimates shared by the PDE motion model's rate control (motion_choice.h,
+// motion_alternatives.h): what each grid value costs the residual coder, what a motion
+// costs in the SEGS section, and the Model predictor as the file will store it.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "codec/model.h"
+#include "codec/residual.h"
+
+namespace dcurve {
+
+// What coding each grid value costs under a plan, and whether its predictor is the Model.
+struct ValueCosts {
+  std::vector<float> bits;        // (f * V + v) * 3 + axis
+  std::vector<uint8_t> by_model;  // same index; 1 when the value's predictor kind is Model
+  std::vector<double> class_bits; // bits of a residual's exponent class in this stream (smoothed)
+  // Estimated bits of residual r under this stream's statistics: class bits plus mantissa.
+  double residual_bits(int64_t r) const;
+};
+
+// Per-value bits of `q` coded under `plan` (complete, as from choose_plan_and_grid): the
+// order-0 entropy of the value's exponent class over the whole stream plus its mantissa
+// bits. The coder's contexts are ignored, so only differences between two plans of the
+// same frames mean something.
+bool value_costs(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
+                 const ResidualOptions& ro, ValueCosts* out, std::string* error);
+
+// The same for the residual payload `model` already carries (its low-rank prediction, if
+// any, included).
+bool coded_value_costs(const Model& model, ValueCosts* out, std::string* error);
+
+// Bytes the SEGS section stores for motion `m` beyond a Zero motion's single byte, before zstd.
+double motion_record_bytes(const CurveMotion& m);
+
+// SEGS stored bytes per raw byte as zstd leaves them for `model` (1 when uncompressed,
+// -1 on an internal error).
+double segs_compression(const Model& model, std::string* error);
+
+// Frames [first, last] whose Model prediction segment s of `model` gives: a boundary frame
+// shared with the next segment belongs to the next one, as in the decoder.
+std::pair<uint32_t, uint32_t> predicted_frames(const Model& model, size_t s);
+
+// The Model predictor of every frame from `model` as the file stores it (written and read
+// back: the in-memory coefficients differ in the last bits), grid units; empty when the
+// model has no Model prediction.
+bool stored_model_prediction(const Model& model, std::vector<int32_t>* prediction, std::string* error);
+
+}  // namespace dcurve
