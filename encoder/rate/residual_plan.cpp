@@ -55,15 +55,18 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, doub
     hi[a] = int64_t(std::ceil((double(x[a]) + radius - layer.origin[a]) / layer.step));
     best[a] = qv[a];
   }
-  double best_score = score(best, distance2(layer, x, best));
+  double best_d2 = distance2(layer, x, best), best_score = score(best, best_d2);
   for (k[0] = lo[0]; k[0] <= hi[0]; ++k[0])
     for (k[1] = lo[1]; k[1] <= hi[1]; ++k[1])
       for (k[2] = lo[2]; k[2] <= hi[2]; ++k[2]) {
         const double d2 = distance2(layer, x, k);
         if (d2 > r2) continue;
         const double sc = score(k, d2);
-        if (sc < best_score) {
+        // Among equally cheap points the one nearest the input: it leaves the most room
+        // before later predictions leave the ball (the first found would drift to a corner).
+        if (sc < best_score || (sc == best_score && d2 < best_d2)) {
           best_score = sc;
+          best_d2 = d2;
           std::copy(k, k + 3, best);
         }
       }
