@@ -118,7 +118,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   }
   progress(0.6);
 
-  m.residual = make_grid(anim, opt.tolerance * L);
+  m.residual = choose_grid(m, anim, opt.tolerance * L, opt.threads);
   std::vector<int32_t> q, prediction;
   if (!quantize_to_grid(anim, m.residual, &q, error)) return false;
   const std::vector<int32_t> rounded = q;

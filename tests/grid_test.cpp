@@ -31,8 +31,8 @@ double coarsest_step(double max_distance) { return 2.0 * max_distance / std::sqr
 TEST(Grid, RefinedGridRoundsWithinTheBound) {
   const Animation anim = random_animation(200, 3, 1.0, 7);
   const double max_distance = 1e-3;
-  const ResidualLayer grid = make_grid(anim, max_distance);
-  EXPECT_LT(grid.step, coarsest_step(max_distance));
+  const ResidualLayer grid = make_grid(anim, max_distance, 1.5);
+  EXPECT_DOUBLE_EQ(grid.step, coarsest_step(max_distance) / 1.5);
   std::vector<int32_t> q;
   std::string error;
   ASSERT_TRUE(quantize_to_grid(anim, grid, &q, &error)) << error;
@@ -56,7 +56,7 @@ TEST(Grid, TinyToleranceKeepsTheCoarsestGridWithinInt32) {
   anim.vertex_count = 2;
   anim.frames.push_back({0.0f, 0.0f, 0.0f, 10400.0f, 10400.0f, 10400.0f});
   const double max_distance = 1e-5;
-  const ResidualLayer grid = make_grid(anim, max_distance);
+  const ResidualLayer grid = make_grid(anim, max_distance, 1.5);
   EXPECT_DOUBLE_EQ(grid.step, coarsest_step(max_distance));
   std::vector<int32_t> q;
   std::string error;
