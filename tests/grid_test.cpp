@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "codec/residual.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/plan_steps.h"
 
@@ -61,6 +62,52 @@ TEST(Grid, TinyToleranceKeepsTheCoarsestGridWithinInt32) {
   std::vector<int32_t> q;
   std::string error;
   EXPECT_TRUE(quantize_to_grid(anim, grid, &q, &error)) << error;
+}
+
+// A sheet of side x side vertices; frame f is `pose(f, x, y, xyz)`.
+template <class Pose>
+Model sheet_model(uint32_t side, uint32_t frames, Pose pose, Animation* anim) {
+  anim->vertex_count = side * side;
+  for (uint32_t i = 0; i + 1 < side; ++i)
+    for (uint32_t j = 0; j + 1 < side; ++j) {
+      const uint32_t a = i * side + j, b = a + 1, c = a + side, d = c + 1;
+      anim->faces.insert(anim->faces.end(), {a, b, d, a, d, c});
+    }
+  for (uint32_t f = 0; f < frames; ++f) {
+    std::vector<float> xyz;
+    for (uint32_t i = 0; i < side; ++i)
+      for (uint32_t j = 0; j < side; ++j) pose(f, double(j) / (side - 1), double(i) / (side - 1), &xyz);
+    anim->frames.push_back(xyz);
+  }
+  Model m;
+  m.meta.vertex_count = anim->vertex_count;
+  m.meta.frame_count = frames;
+  m.faces = anim->faces;
+  return m;
+}
+
+TEST(Grid, SlowSmoothMotionGetsTheFinerGridAndNoiseTheCoarsest) {
+  const double max_distance = 1e-3 * std::sqrt(2.0);
+  const double coarse = coarsest_step(max_distance);
+  // Drifts a third of a coarsest step per frame, slowly turning: rounding drives the cost.
+  Animation slow;
+  const Model slow_model = sheet_model(16, 24, [&](uint32_t f, double x, double y, std::vector<float>* xyz) {
+    const double ang = 0.002 * f;
+    xyz->push_back(float(std::cos(ang) * x - std::sin(ang) * y + f * coarse / 3));
+    xyz->push_back(float(std::sin(ang) * x + std::cos(ang) * y + f * coarse / 5));
+    xyz->push_back(float(0.05 * x * y));
+  }, &slow);
+  EXPECT_LT(choose_grid(slow_model, slow, max_distance, 1).step, coarse);
+  // Independent noise of many steps per vertex and frame: every value costs its magnitude.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> noise(-40 * coarse, 40 * coarse);
+  Animation noisy;
+  const Model noisy_model = sheet_model(16, 24, [&](uint32_t, double x, double y, std::vector<float>* xyz) {
+    xyz->push_back(float(x + noise(rng)));
+    xyz->push_back(float(y + noise(rng)));
+    xyz->push_back(float(noise(rng)));
+  }, &noisy);
+  EXPECT_DOUBLE_EQ(choose_grid(noisy_model, noisy, max_distance, 1).step, coarse);
 }
 
 TEST(Snap, EquallyCheapPointsKeepTheNearest) {

@@ -17,8 +17,8 @@ namespace dcurve {
 // minimum over all frames, so grid values start at 0.
 ResidualLayer make_grid(const Animation& anim, double max_distance, double refinement = 1.0);
 
-// The coarsest grid or a finer one (grid.cpp says why), whichever codes a run of frames
-// from the middle of `anim` smaller with the residual layer alone. `model` supplies
+// The coarsest grid or a finer one (grid.cpp says why), whichever codes `anim` (or, when
+// it is large, a run of frames from its middle) smaller with the residual layer alone. `model` supplies
 // counts, faces and curves, as the residual layer will see them. threads: 0 = all cores;
 // the choice never depends on it. Costs two small residual encodes.
 ResidualLayer choose_grid(const Model& model, const Animation& anim, double max_distance, int threads);
