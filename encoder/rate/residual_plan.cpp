@@ -56,10 +56,20 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, doub
     best[a] = qv[a];
   }
   double best_d2 = distance2(layer, x, best), best_score = score(best, best_d2);
-  for (k[0] = lo[0]; k[0] <= hi[0]; ++k[0])
-    for (k[1] = lo[1]; k[1] <= hi[1]; ++k[1])
+  // The squared distance summed axis by axis as distance2 does, so a partial sum already
+  // beyond the radius skips the rest of the box (the result is the same, found sooner).
+  auto axis_d2 = [&](int a) {
+    const double d = double(grid_to_model(layer, a, k[a])) - double(x[a]);
+    return d * d;
+  };
+  for (k[0] = lo[0]; k[0] <= hi[0]; ++k[0]) {
+    const double d2_0 = axis_d2(0);
+    if (d2_0 > r2) continue;
+    for (k[1] = lo[1]; k[1] <= hi[1]; ++k[1]) {
+      const double d2_1 = d2_0 + axis_d2(1);
+      if (d2_1 > r2) continue;
       for (k[2] = lo[2]; k[2] <= hi[2]; ++k[2]) {
-        const double d2 = distance2(layer, x, k);
+        const double d2 = d2_1 + axis_d2(2);
         if (d2 > r2) continue;
         const double sc = score(k, d2);
         // Among equally cheap points the one nearest the input: it leaves the most room
@@ -70,6 +80,8 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, doub
           std::copy(k, k + 3, best);
         }
       }
+    }
+  }
   for (int a = 0; a < 3; ++a)
     if (best[a] >= INT32_MIN && best[a] <= INT32_MAX) qv[a] = int32_t(best[a]);
 }
