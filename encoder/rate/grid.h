@@ -18,9 +18,10 @@ namespace dcurve {
 ResidualLayer make_grid(const Animation& anim, double max_distance, double refinement = 1.0);
 
 // The coarsest grid or a finer one (grid.cpp says why), whichever codes `anim` (or, when
-// it is large, a run of frames from its middle) smaller with the residual layer alone. `model` supplies
-// counts, faces and curves, as the residual layer will see them. threads: 0 = all cores;
-// the choice never depends on it. Costs two small residual encodes.
+// it is large, a run of frames from its middle) smaller with the residual layer alone.
+// `model` supplies counts, faces and curves, as the residual layer will see them.
+// threads: 0 = all cores; the choice never depends on it. Costs two residual encodes with
+// one coding order and no clusters.
 ResidualLayer choose_grid(const Model& model, const Animation& anim, double max_distance, int threads);
 
 // Rounds every frame to the grid: q[(f * V + v) * 3 + axis]. Fails when a value would not fit
