@@ -85,21 +85,27 @@ Curves file_curves(const Animation& anim, const EncodeOptions& opt, std::string*
   return curves;
 }
 
-// What both encodes share: metadata, faces, the residual grid and its rounded values.
+// What both encodes share: metadata, faces, the plain file's curves, the residual grid and
+// its rounded values.
 struct GridStart {
   Model model;
   std::vector<int32_t> rounded;
   double snap = 0;
 };
 
-bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, std::string* error) {
+bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, std::string* curve_fallback,
+                 std::string* error) {
   Model& m = out->model;
   const double L = bbox_diagonal(anim.frames[0]);
   m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), anim.frame_rate, opt.tolerance, L, ""};
   // The residual layer predicts from mesh neighbours when the file stores faces, and from
   // curve neighbours otherwise: it must see exactly what the decoder will.
   if (opt.connectivity) m.faces = opt.exact_face_order ? anim.faces : smaller_face_order(anim.faces);
-  m.residual = make_grid(anim, opt.tolerance * L);
+  EncodeOptions plain_opt = opt;
+  plain_opt.model = ModelChoice::None;
+  m.curves = file_curves(anim, plain_opt, curve_fallback);
+  // The grid is chosen by trial encodes, which must see the faces or curves the file keeps.
+  m.residual = choose_grid(m, anim, opt.tolerance * L, opt.threads);
   out->snap = snap_distance(anim, opt.tolerance * L);
   return quantize_to_grid(anim, m.residual, &out->rounded, error);
 }
@@ -184,12 +190,9 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
 
   EncodeReport rep;
   GridStart start;
-  if (!start_model(anim, opt, &start, error)) return false;
+  if (!start_model(anim, opt, &start, &rep.curve_fallback, error)) return false;
   // The file without a PDE model comes first: with --model none it is the file, otherwise
   // the motion model has to beat it, value by value and as a whole file.
-  EncodeOptions plain_opt = opt;
-  plain_opt.model = ModelChoice::None;
-  start.model.curves = file_curves(anim, plain_opt, &rep.curve_fallback);
   progress(0.1);
   Model m, residual_only;
   if (!encode_plain(anim, opt, start, &m, opt.model == ModelChoice::None ? nullptr : &residual_only, error))

@@ -67,8 +67,10 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, doub
     }
     best[a] = qv[a];
   }
-  double best_score = score(best, distance2(layer, x, best));
-  for (size_t i = 0; i < axis_d2[0].size(); ++i)
+  double best_d2 = distance2(layer, x, best), best_score = score(best, best_d2);
+  // Partial squared distances already beyond the radius skip the rest of the box.
+  for (size_t i = 0; i < axis_d2[0].size(); ++i) {
+    if (axis_d2[0][i] > r2) continue;
     for (size_t j = 0; j < axis_d2[1].size(); ++j) {
       const double d01 = axis_d2[0][i] + axis_d2[1][j];
       if (d01 > r2) continue;
@@ -76,14 +78,18 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, doub
         const double d2 = d01 + axis_d2[2][l];
         if (d2 > r2) continue;
         const double sc = (axis_bits[0][i] + axis_bits[1][j] + axis_bits[2][l]) + distance_weight * d2 / r2;
-        if (sc < best_score) {
+        // Among equally cheap points the one nearest the input: it leaves the most room
+        // before later predictions leave the ball (the first found would drift to a corner).
+        if (sc < best_score || (sc == best_score && d2 < best_d2)) {
           best_score = sc;
+          best_d2 = d2;
           best[0] = lo[0] + int64_t(i);
           best[1] = lo[1] + int64_t(j);
           best[2] = lo[2] + int64_t(l);
         }
       }
     }
+  }
   for (int a = 0; a < 3; ++a)
     if (best[a] >= INT32_MIN && best[a] <= INT32_MAX) qv[a] = int32_t(best[a]);
 }
