@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -10,6 +12,12 @@
 #include <iterator>
 
 namespace dcurve {
+
+std::string lowercase_extension(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return e;
+}
 
 bool read_file(const std::string& path, std::vector<uint8_t>* bytes, std::string* error) {
   std::error_code ec;

@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "codec/error.h"
+#include "encoder/io/files.h"
 #include "encoder/io/text_mesh_check.h"
 
 namespace dcurve {
@@ -21,12 +22,6 @@ struct Traits : OpenMesh::DefaultTraits {
   typedef OpenMesh::Vec3f Point;
 };
 using Mesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
-
-std::string lower_ext(const fs::path& p) {
-  std::string e = p.extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return e;
-}
 
 // OpenMesh reports every file it writes on its log streams; a codec's CLI must stay quiet.
 void silence_openmesh() {
@@ -80,9 +75,9 @@ bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count
   }
   fs::path target(path);
   fs::path tmp = target;
-  tmp += ".tmp" + lower_ext(target);  // OpenMesh picks the writer from the extension
+  tmp += ".tmp" + lowercase_extension(target.string());  // OpenMesh picks the writer from the extension
   OpenMesh::IO::Options opt;
-  if (lower_ext(target) == ".ply") opt += OpenMesh::IO::Options::Binary;
+  if (lowercase_extension(target.string()) == ".ply") opt += OpenMesh::IO::Options::Binary;
   if (!OpenMesh::IO::write_mesh(mesh, tmp.string(), opt, 9)) {
     std::remove(tmp.c_str());
     return fail(error, path + ": cannot write mesh");
@@ -115,7 +110,7 @@ bool read_frame_folder(const std::string& dir, Animation* anim, std::string* err
   if (!fs::is_directory(dir, ec)) return fail(error, dir + ": not a folder");
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
-    std::string ext = lower_ext(e.path());
+    std::string ext = lowercase_extension(e.path().string());
     if (e.is_regular_file() && (ext == ".obj" || ext == ".ply" || ext == ".off")) files.push_back(e.path());
   }
   if (ec) return fail(error, dir + ": " + ec.message());

@@ -1,7 +1,6 @@
 #include "encoder/io/text_mesh_check.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
@@ -9,16 +8,10 @@
 #include <sstream>
 
 #include "codec/error.h"
+#include "encoder/io/files.h"
 
 namespace dcurve {
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  const size_t dot = path.find_last_of('.');
-  std::string e = dot == std::string::npos ? "" : path.substr(dot);
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return e;
-}
 
 // Parses up to `count` numbers from `p` (all the remaining ones when count < 0): false when
 // one is missing or not a finite value within float range.
@@ -108,7 +101,7 @@ bool check_ascii_ply(std::ifstream& in, const std::string& path, std::string* er
 }  // namespace
 
 bool check_text_mesh_vertices(const std::string& path, std::string* error) {
-  const std::string ext = lower_extension(path);
+  const std::string ext = lowercase_extension(path);
   if (ext != ".obj" && ext != ".off" && ext != ".ply") return true;
   std::ifstream in(path, std::ios::binary);
   if (!in) return true;  // unreadable: OpenMesh reports it
