@@ -121,6 +121,7 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
       if (!round_to(pca.amplitudes[k][i] / basis_step, kMaxLowRankBasis, &values[(size_t(k) + 1) * n + i]))
         return false;
   lr.basis_payload = code_mean_and_basis(*model, values, K + 1, threads);
+  if (lr.basis_payload.empty()) return false;
   model->low_rank = std::move(lr);
   return true;
 }
