@@ -448,9 +448,9 @@ bool decode_predictor_plan(const Model& model, PredictorPlan* plan, std::string*
 }
 
 bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
-                      const ResidualOptions& options) {
-  PredictorPlan plan;
-  return decode_all(model, q, &plan, error, options);
+                      const ResidualOptions& options, PredictorPlan* plan) {
+  PredictorPlan own;
+  return decode_all(model, q, plan ? plan : &own, error, options);
 }
 
 std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,

@@ -73,9 +73,10 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
 
 // Reverses encode_residuals. `q` receives frame_count * vertex_count * 3 values. Returns
 // false with a message on a malformed or corrupted payload (a checksum of the decoded
-// values is verified); never reads outside the payload.
+// values is verified); never reads outside the payload. `plan`, when not null, receives the
+// complete plan the payload was coded with (per-cluster choices and motion maps included).
 bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
-                      const ResidualOptions& options = {});
+                      const ResidualOptions& options = {}, PredictorPlan* plan = nullptr);
 
 // Reads the predictor table of model.residual.payload (for reports and tools). The
 // per-cluster choices and motion maps live in the coded stream: with `with_clusters` the

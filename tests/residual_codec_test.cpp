@@ -370,6 +370,11 @@ TEST(ResidualCodec, RandomClusterPlansRoundTripBitExactly) {
       PredictorPlan back;
       ASSERT_TRUE(decode_predictor_plan(m, &back, &err, {}, true)) << err;
       for (uint32_t f = 0; f < kFrames; ++f) EXPECT_EQ(back.frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
+      PredictorPlan with_values;  // the same plan from the decode that also gives the values
+      ASSERT_TRUE(decode_residuals(m, &out, &err, {}, &with_values)) << err;
+      EXPECT_EQ(out, q);
+      for (uint32_t f = 0; f < kFrames; ++f)
+        EXPECT_EQ(with_values.frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
       // A traversal the caller supplies (built once, reused) codes and decodes the same bytes.
       const Traversal trav = build_traversal(m);
       ResidualOptions reuse;

@@ -133,8 +133,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   // What the residual layer pays today, frame by frame.
   std::vector<int32_t> q_without;
   PredictorPlan plan_without;
-  if (!decode_residuals(*model, &q_without, error) || !decode_predictor_plan(*model, &plan_without, error, {}, true))
-    return false;
+  if (!decode_residuals(*model, &q_without, error, {}, &plan_without)) return false;
   const std::vector<double> bits_without = frame_bits(*model, q_without, plan_without, {});
 
   const GridComponents pca = grid_components(rounded, F, n, std::min<uint32_t>(kMaxLowRankComponents, F - 1));

@@ -98,8 +98,7 @@ bool coded_value_costs(const Model& baseline, ValueCosts* out, std::string* erro
     ro.model_prediction = &prediction;
   }
   PredictorPlan plan;
-  if (!decode_residuals(baseline, &q, error, ro) || !decode_predictor_plan(baseline, &plan, error, ro, true))
-    return false;
+  if (!decode_residuals(baseline, &q, error, ro, &plan)) return false;
   return value_costs(baseline, q, plan, ro, out, error);
 }
 
