@@ -132,6 +132,18 @@ std::vector<uint8_t> curve_bytes(const Model& m) {
   return std::move(w.data());
 }
 
+// One SEGS motion record (dcrv.md section 8).
+void write_motion(ByteWriter& w, const CurveMotion& cm) {
+  w.u8(uint8_t(cm.basis));
+  if (cm.basis == Basis::Zero) return;
+  w.u8(cm.basis_case);
+  w.f32(cm.time_param);
+  w.f32(cm.space_param);
+  w.u8(uint8_t(cm.coeff_exponent));
+  // Exact for quantized coefficients (validate_model checks that they are).
+  for (float c : cm.coeffs) w.varint(zigzag_encode(int64_t(std::ldexp(double(c), -cm.coeff_exponent))));
+}
+
 std::vector<uint8_t> segment_bytes(const Model& m) {
   ByteWriter w;
   w.u32(uint32_t(m.segments.size()));
@@ -139,19 +151,11 @@ std::vector<uint8_t> segment_bytes(const Model& m) {
     w.u32(s.first_frame);
     w.u32(s.last_frame);
     w.u8(uint8_t(s.mode));
-    for (const CurveMotion& cm : s.motion) {
-      w.u8(uint8_t(cm.basis));
-      if (cm.basis == Basis::Zero) continue;
-      w.u8(cm.basis_case);
-      w.f32(cm.time_param);
-      w.f32(cm.space_param);
-      w.u8(uint8_t(cm.coeff_exponent));
-      // Exact for quantized coefficients (validate_model checks that they are).
-      for (float c : cm.coeffs) w.varint(zigzag_encode(int64_t(std::ldexp(double(c), -cm.coeff_exponent))));
-    }
+    for (const CurveMotion& cm : s.motion) write_motion(w, cm);
   }
   return std::move(w.data());
 }
+
 
 std::vector<uint8_t> residual_bytes(const Model& m) {
   ByteWriter w;
@@ -244,6 +248,12 @@ bool parse_residual(ByteReader& r, Model* m) {
 }
 
 }  // namespace
+
+size_t motion_record_size(const CurveMotion& m) {
+  ByteWriter w;
+  write_motion(w, m);
+  return w.data().size();
+}
 
 std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options) {
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;

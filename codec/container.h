@@ -79,6 +79,10 @@ constexpr int kCoeffExponentMin = -100, kCoeffExponentMax = 40, kCoeffIntegerBit
 // The result is exactly what a reader gets back. Returns the exponent used.
 int quantize_coefficients(CurveMotion* m, int exponent);
 
+// Bytes one SEGS motion record of `m` takes (dcrv.md section 8): 1 for a Zero motion; the
+// coefficients must already be quantized (quantize_coefficients).
+size_t motion_record_size(const CurveMotion& m);
+
 // Parses and validates a whole file. On failure returns false and a message naming the
 // problem; never reads outside [data, data + size) and bounds every allocation by `size`.
 bool read_container(const uint8_t* data, size_t size, Model* model, std::string* error,

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "codec/bytes.h"
 #include "codec/container.h"
 #include "codec/error.h"
 #include "decoder/model_prediction.h"
@@ -68,16 +67,7 @@ bool value_costs(const Model& model, const std::vector<int32_t>& q, const Predic
 }
 
 double motion_record_bytes(const CurveMotion& m) {
-  if (m.basis == Basis::Zero) return 0;
-  double bytes = 1 + 4 + 4 + 1;  // basis_case, time_param, space_param, coeff_exponent
-  for (float c : m.coeffs) {
-    uint64_t z = zigzag_encode(int64_t(std::ldexp(double(c), -m.coeff_exponent)));
-    do {
-      ++bytes;
-      z >>= 7;
-    } while (z);
-  }
-  return bytes;
+  return m.basis == Basis::Zero ? 0 : double(motion_record_size(m) - 1);
 }
 
 double segs_compression(const Model& model, std::string* error) {
