@@ -15,30 +15,21 @@ namespace {
 // mantissa bits. Contexts as in residual_plan.cpp: neighbour class (5) x axis class (3).
 class CostTable {
  public:
-  static constexpr int kContexts = 15, kClasses = 2 * 41 + 1;
+  static constexpr int kContexts = 15, kClasses = kResidualClasses;
   CostTable() : counts_(size_t(kContexts) * kClasses), bits_(counts_.size()) {
     // Prior: what residual_cost says, as a few pseudo-observations per context.
     for (int c = 0; c < kContexts; ++c)
       for (int k = 0; k < kClasses; ++k) counts_[size_t(c) * kClasses + size_t(k)] = 8 * std::exp2(-prior_bits(k));
     rebuild();
   }
-  static int class_of(int64_t r, int* exponent) {
-    if (r == 0) { *exponent = 0; return 0; }
-    uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
-    int e = 0;
-    while (m >>= 1) ++e;
-    e = std::min(e, 40);
-    *exponent = e;
-    return 1 + 2 * e + (r < 0);
-  }
   double cost(int ctx, int64_t r) const {
     int e;
-    const int k = class_of(r, &e);
+    const int k = residual_class(r, &e);
     return bits_[size_t(ctx) * kClasses + size_t(k)] + e;
   }
   void add(int ctx, int64_t r) {
     int e;
-    counts_[size_t(ctx) * kClasses + size_t(class_of(r, &e))] += 1;
+    counts_[size_t(ctx) * kClasses + size_t(residual_class(r, &e))] += 1;
   }
   // Halves what was learnt before (statistics drift between frames), then recomputes bits.
   void next_frame() {

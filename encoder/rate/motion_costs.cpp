@@ -6,28 +6,13 @@
 #include "codec/container.h"
 #include "codec/error.h"
 #include "decoder/model_prediction.h"
+#include "encoder/rate/plan_steps.h"
 
 namespace dcurve {
-namespace {
-
-constexpr int kClasses = 2 * 41 + 1;
-
-int exponent_class(int64_t r, int* exponent) {
-  *exponent = 0;
-  if (r == 0) return 0;
-  uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
-  int e = 0;
-  while (m >>= 1) ++e;
-  e = std::min(e, 40);
-  *exponent = e;
-  return 1 + 2 * e + (r < 0);
-}
-
-}  // namespace
 
 double ValueCosts::residual_bits(int64_t r) const {
   int e;
-  const int k = exponent_class(r, &e);
+  const int k = residual_class(r, &e);
   return class_bits[size_t(k)] + e;
 }
 
@@ -38,15 +23,15 @@ bool value_costs(const Model& model, const std::vector<int32_t>& q, const Predic
   const std::vector<int64_t> r = residual_values(model, q, plan, ro);
   if (r.size() != n * plan.order.size() || plan.frames.size() != model.meta.frame_count)
     return fail(error, "internal error: residual values do not match the plan");
-  std::vector<double> hist(kClasses, 0.0);
+  std::vector<double> hist(kResidualClasses, 0.0);
   for (int64_t x : r) {
     int e;
-    hist[size_t(exponent_class(x, &e))] += 1;
+    hist[size_t(residual_class(x, &e))] += 1;
   }
   // Half a count for classes never seen: other predictions of the same values may use them.
-  out->class_bits.assign(kClasses, 0.0);
-  for (int k = 0; k < kClasses; ++k)
-    out->class_bits[size_t(k)] = -std::log2((hist[size_t(k)] + 0.5) / (double(r.size()) + 0.5 * kClasses));
+  out->class_bits.assign(kResidualClasses, 0.0);
+  for (int k = 0; k < kResidualClasses; ++k)
+    out->class_bits[size_t(k)] = -std::log2((hist[size_t(k)] + 0.5) / (double(r.size()) + 0.5 * kResidualClasses));
   const Traversal trav = build_traversal(model);
   out->bits.assign(q.size(), 0.f);
   out->by_model.assign(q.size(), 0);

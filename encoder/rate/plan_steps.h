@@ -1,5 +1,6 @@
-// Steps of the residual rate control shared by the per-frame plan (residual_plan.cpp) and
-// the per-cluster refinement (cluster_plan.cpp).
+// Steps of the residual rate control shared by the per-frame plan (residual_plan.cpp), the
+// per-cluster refinement (cluster_plan.cpp) and the PDE model's cost estimates
+// (motion_costs.cpp).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -12,6 +13,11 @@ namespace dcurve {
 
 // Estimated bits of one residual (grid steps) when choosing among grid points.
 int residual_cost(int64_t r);
+
+// The exponent class the entropy estimates count a residual in: 0 for zero, else
+// 1 + 2 e + (r < 0) with e = min(floor(log2 |r|), 40), which *exponent receives (0 for zero).
+constexpr int kResidualClasses = 2 * 41 + 1;
+int residual_class(int64_t r, int* exponent);
 
 // Moves qv (a vertex's three grid values) to the admissible grid point (decoded within
 // radius, model units, of the input position x) cheapest to code against pred.

@@ -13,8 +13,6 @@
 
 namespace dcurve {
 
-constexpr int kClasses = 2 * 41 + 1;
-
 // Estimated bits of a residual when choosing among admissible grid points: what an
 // adaptive exponent coder roughly pays.
 int residual_cost(int64_t r) {
@@ -23,6 +21,16 @@ int residual_cost(int64_t r) {
   int e = 0;
   while (m >>= 1) ++e;
   return 2 + 2 * e;
+}
+
+int residual_class(int64_t r, int* exponent) {
+  *exponent = 0;
+  if (r == 0) return 0;
+  uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
+  int e = 0;
+  while (m >>= 1) ++e;
+  *exponent = std::min(e, 40);
+  return 1 + 2 * *exponent + (r < 0);
 }
 
 static double distance2(const ResidualLayer& layer, const float* x, const int64_t* k) {
@@ -199,18 +207,13 @@ double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::
   for (size_t i = 0; i < residuals.size(); ++i) {
     const size_t c = contexts[i];
     if (c >= hist.size()) {
-      hist.resize(c + 1, std::vector<uint64_t>(kClasses, 0));
+      hist.resize(c + 1, std::vector<uint64_t>(kResidualClasses, 0));
       count.resize(c + 1, 0);
     }
     ++count[c];
-    const int64_t r = residuals[i];
-    if (r == 0) { ++hist[c][0]; continue; }
-    uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
-    int e = 0;
-    while (m >>= 1) ++e;
-    e = std::min(e, 40);
+    int e;
+    ++hist[c][size_t(residual_class(residuals[i], &e))];
     mantissa += e;
-    ++hist[c][size_t(1 + 2 * e + (r < 0))];
   }
   double bits = mantissa;
   for (size_t c = 0; c < hist.size(); ++c)
