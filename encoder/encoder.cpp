@@ -93,23 +93,6 @@ struct GridStart {
   double snap = 0;
 };
 
-bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, std::string* curve_fallback,
-                 std::string* error) {
-  Model& m = out->model;
-  const double L = bbox_diagonal(anim.frames[0]);
-  m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), anim.frame_rate, opt.tolerance, L, ""};
-  // The residual layer predicts from mesh neighbours when the file stores faces, and from
-  // curve neighbours otherwise: it must see exactly what the decoder will.
-  if (opt.connectivity) m.faces = opt.exact_face_order ? anim.faces : smaller_face_order(anim.faces);
-  EncodeOptions plain_opt = opt;
-  plain_opt.model = ModelChoice::None;
-  m.curves = file_curves(anim, plain_opt, curve_fallback);
-  // The grid is chosen by trial encodes, which must see the faces or curves the file keeps.
-  m.residual = choose_grid(m, anim, opt.tolerance * L, opt.threads);
-  out->snap = snap_distance(anim, opt.tolerance * L);
-  return quantize_to_grid(anim, m.residual, &out->rounded, error);
-}
-
 // The encode without a PDE model: the residual layer alone, with a low-rank model where it
 // pays. `residual_only` (may be null) receives it before the low-rank choice: what a PDE
 // motion competes with inside a file, which cannot also carry a low-rank model.
@@ -129,6 +112,46 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   lro.components = opt.low_rank;
   lro.threads = opt.threads;
   return choose_low_rank(m, anim.frames, start.rounded, start.snap, wo, lro, nullptr, error);
+}
+
+// The model every encode starts from: faces, curves, and the grid chosen by trial encodes
+// of encode_plain. When the trials coded the whole animation, *plain receives the winning
+// trial, which is then the plain encode itself (else it is left empty).
+bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, Model* plain,
+                 std::string* curve_fallback, std::string* error) {
+  Model& m = out->model;
+  const double L = bbox_diagonal(anim.frames[0]);
+  m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), anim.frame_rate, opt.tolerance, L, ""};
+  // The residual layer predicts from mesh neighbours when the file stores faces, and from
+  // curve neighbours otherwise: it must see exactly what the decoder will.
+  if (opt.connectivity) m.faces = opt.exact_face_order ? anim.faces : smaller_face_order(anim.faces);
+  EncodeOptions plain_opt = opt;
+  plain_opt.model = ModelChoice::None;
+  m.curves = file_curves(anim, plain_opt, curve_fallback);
+  out->snap = snap_distance(anim, opt.tolerance * L);
+  // The grid is chosen by whole plain encodes, which see the faces, curves and low-rank
+  // model the file keeps: cheaper proxies (the residual layer alone, fewer coding orders)
+  // ranked the grids wrongly on half of the corpus.
+  WriteOptions wo;
+  wo.connectivity = opt.connectivity;
+  std::vector<Model> trials(kGridTrialSlots);
+  const GridChoice choice =
+      choose_grid(anim, opt.tolerance * L, opt.threads,
+                  [&](const ResidualLayer& grid, const Animation& part, size_t slot, int threads) -> size_t {
+                    GridStart s;
+                    s.model = m;
+                    s.model.meta.frame_count = uint32_t(part.frames.size());
+                    s.model.residual = grid;
+                    s.snap = out->snap;
+                    if (!quantize_to_grid(part, grid, &s.rounded, nullptr)) return SIZE_MAX;
+                    EncodeOptions o = plain_opt;
+                    o.threads = threads;
+                    if (!encode_plain(part, o, s, &trials[slot], nullptr, nullptr)) return SIZE_MAX;
+                    return write_container(trials[slot], wo).size();
+                  });
+  m.residual = choice.grid;
+  if (choice.whole) *plain = std::move(trials[choice.slot]);
+  return quantize_to_grid(anim, m.residual, &out->rounded, error);
 }
 
 // The encode with the PDE motion model: fitted on every curve and segment with each allowed
@@ -190,12 +213,15 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
 
   EncodeReport rep;
   GridStart start;
-  if (!start_model(anim, opt, &start, &rep.curve_fallback, error)) return false;
+  Model m, residual_only;
+  if (!start_model(anim, opt, &start, &m, &rep.curve_fallback, error)) return false;
   // The file without a PDE model comes first: with --model none it is the file, otherwise
   // the motion model has to beat it, value by value and as a whole file.
   progress(0.1);
-  Model m, residual_only;
-  if (!encode_plain(anim, opt, start, &m, opt.model == ModelChoice::None ? nullptr : &residual_only, error))
+  // The PDE model competes with the residual layer alone, which the grid trials keep not.
+  const bool have_plain = !m.residual.payload.empty() && opt.model == ModelChoice::None;
+  if (!have_plain &&
+      !encode_plain(anim, opt, start, &m, opt.model == ModelChoice::None ? nullptr : &residual_only, error))
     return false;
   WriteOptions wo;
   wo.connectivity = opt.connectivity;

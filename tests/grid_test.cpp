@@ -1,7 +1,8 @@
 // The grid that carries the error guarantee and the snapping of grid values: rounding to
 // the (refined) grid stays within the tolerance, a tolerance too small for the refined
-// grid's int32 range falls back to the coarsest grid, and among equally cheap admissible
-// grid points snapping keeps the one nearest the input.
+// grid's int32 range falls back to the coarsest grid, the grid search finds the cheapest
+// refinement, snapping finds the cheapest admissible grid point (as a search of every
+// lattice point would) and among equally cheap ones keeps the one nearest the input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "codec/residual.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/plan_steps.h"
+#include "encoder/rate/residual_plan.h"
 
 namespace dcurve {
 namespace {
@@ -86,7 +88,22 @@ Model sheet_model(uint32_t side, uint32_t frames, Pose pose, Animation* anim) {
   return m;
 }
 
-TEST(Grid, SlowSmoothMotionGetsTheFinerGridAndNoiseTheCoarsest) {
+// The residual layer alone as the trial encode: what the grid changes most.
+GridTrial residual_trial(const Model& model, double max_distance) {
+  return [&model, max_distance](const ResidualLayer& grid, const Animation& part, size_t, int threads) -> size_t {
+    Model trial = model;
+    trial.meta.frame_count = uint32_t(part.frames.size());
+    trial.residual = grid;
+    std::vector<int32_t> q;
+    if (!quantize_to_grid(part, grid, &q, nullptr)) return SIZE_MAX;
+    ResidualPlanOptions po;
+    po.threads = threads;
+    const PredictorPlan plan = choose_plan_and_grid(trial, part.frames, max_distance * (1.0 - 1e-6), &q, {}, po);
+    return encode_residuals(trial, q, &plan).size();
+  };
+}
+
+TEST(Grid, SlowSmoothMotionGetsAFinerGridAndNoiseTheCoarsest) {
   const double max_distance = 1e-3 * std::sqrt(2.0);
   const double coarse = coarsest_step(max_distance);
   // Drifts a third of a coarsest step per frame, slowly turning: rounding drives the cost.
@@ -97,7 +114,9 @@ TEST(Grid, SlowSmoothMotionGetsTheFinerGridAndNoiseTheCoarsest) {
     xyz->push_back(float(std::sin(ang) * x + std::cos(ang) * y + f * coarse / 5));
     xyz->push_back(float(0.05 * x * y));
   }, &slow);
-  EXPECT_LT(choose_grid(slow_model, slow, max_distance, 1).step, coarse);
+  const GridChoice fine = choose_grid(slow, max_distance, 1, residual_trial(slow_model, max_distance));
+  EXPECT_LT(fine.grid.step, coarse);
+  EXPECT_TRUE(fine.whole);
   // Independent noise of many steps per vertex and frame: every value costs its magnitude.
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> noise(-40 * coarse, 40 * coarse);
@@ -107,7 +126,45 @@ TEST(Grid, SlowSmoothMotionGetsTheFinerGridAndNoiseTheCoarsest) {
     xyz->push_back(float(y + noise(rng)));
     xyz->push_back(float(noise(rng)));
   }, &noisy);
-  EXPECT_DOUBLE_EQ(choose_grid(noisy_model, noisy, max_distance, 1).step, coarse);
+  EXPECT_DOUBLE_EQ(choose_grid(noisy, max_distance, 1, residual_trial(noisy_model, max_distance)).grid.step, coarse);
+}
+
+// A trial cost with its minimum at refinement `target`, counting the trials.
+GridTrial valley(double coarse, double target, std::vector<double>* tried) {
+  return [=](const ResidualLayer& grid, const Animation&, size_t, int) -> size_t {
+    const double refinement = coarse / grid.step;
+    tried->push_back(refinement);
+    return size_t(1000 + 100 * std::fabs(std::log2(refinement / target)));
+  };
+}
+
+TEST(Grid, SearchFindsTheCheapestRefinementInFewTrials) {
+  const Animation anim = random_animation(50, 40, 1.0, 3);
+  const double max_distance = 1e-3, coarse = coarsest_step(max_distance);
+  for (double target : {1.0, 1.5, 2.0, 3.0, 4.0, 8.0}) {
+    std::vector<double> tried;
+    const GridChoice c = choose_grid(anim, max_distance, 2, valley(coarse, target, &tried));
+    EXPECT_NEAR(c.grid.step, coarse / target, 1e-12 * coarse) << "target " << target;
+    EXPECT_TRUE(c.whole);
+    // Two first trials, then the neighbours of the better, while the best moves.
+    EXPECT_LE(tried.size(), target <= 3 ? 4u : target <= 4 ? 5u : 6u) << "target " << target;
+  }
+}
+
+TEST(Grid, LargeAnimationsAreTriedOnAMiddleRunAndFailedTrialsKeepTheCoarsest) {
+  const Animation anim = random_animation(20000, 40, 1.0, 4);  // 800k vertex-frames
+  const double max_distance = 1e-3;
+  std::vector<uint32_t> frames;
+  const GridChoice c = choose_grid(anim, max_distance, 1, [&](const ResidualLayer&, const Animation& part, size_t, int) {
+    frames.push_back(uint32_t(part.frames.size()));
+    EXPECT_EQ(part.frames.front(), anim.frames[(40 - part.frames.size()) / 2]);
+    return SIZE_MAX;
+  });
+  ASSERT_FALSE(frames.empty());
+  EXPECT_LT(frames.front(), 40u);
+  EXPECT_GE(frames.front(), 33u);
+  EXPECT_FALSE(c.whole);
+  EXPECT_DOUBLE_EQ(c.grid.step, coarsest_step(max_distance));
 }
 
 TEST(Snap, EquallyCheapPointsKeepTheNearest) {
@@ -124,39 +181,72 @@ TEST(Snap, EquallyCheapPointsKeepTheNearest) {
   EXPECT_EQ(qv[2], 0);
 }
 
-TEST(Snap, ChoosesTheNearestOfTheCheapestAdmissiblePoints) {
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-3, 3);
-  ResidualLayer layer;
-  layer.step = 1.0;
-  for (int trial = 0; trial < 500; ++trial) {
-    const float x[3] = {float(u(rng)), float(u(rng)), float(u(rng))};
-    const double radius = 1.3;
-    const int64_t pred[3] = {std::lround(u(rng) * 2), std::lround(u(rng) * 2), std::lround(u(rng) * 2)};
-    int32_t qv[3];
-    for (int a = 0; a < 3; ++a) qv[a] = int32_t(std::lround(x[a]));
-    snap_vertex(layer, x, radius, 0.0, pred, qv);
-    // Brute force over the points around x.
-    int best_cost = INT32_MAX;
-    double best_d2 = HUGE_VAL;
-    for (int i = -3; i <= 3; ++i)
-      for (int j = -3; j <= 3; ++j)
-        for (int k = -3; k <= 3; ++k) {
-          const int64_t p[3] = {std::lround(x[0]) + i, std::lround(x[1]) + j, std::lround(x[2]) + k};
-          double d2 = 0;
-          for (int a = 0; a < 3; ++a) d2 += (double(p[a]) - double(x[a])) * (double(p[a]) - double(x[a]));
-          if (d2 > radius * radius) continue;
-          const int cost = residual_cost(p[0] - pred[0]) + residual_cost(p[1] - pred[1]) + residual_cost(p[2] - pred[2]);
-          if (cost < best_cost || (cost == best_cost && d2 < best_d2)) {
-            best_cost = cost;
-            best_d2 = d2;
-          }
+// Every lattice point of the box around the ball: the (score, distance) snap_vertex must reach.
+void brute_force_snap(const ResidualLayer& layer, const float* x, double radius, double weight, const int64_t* pred,
+                      const int32_t* start, double* best_score, double* best_d2) {
+  const double r2 = radius * radius;
+  auto eval = [&](const int64_t* k, double* sc, double* d2) {
+    *d2 = 0;
+    int bits = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double d = double(grid_to_model(layer, a, k[a])) - double(x[a]);
+      *d2 += d * d;
+      bits += residual_cost(k[a] - pred[a]);
+    }
+    *sc = bits + weight * *d2 / r2;
+  };
+  const int64_t s[3] = {start[0], start[1], start[2]};
+  eval(s, best_score, best_d2);
+  int64_t lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = int64_t(std::floor((double(x[a]) - radius - layer.origin[a]) / layer.step));
+    hi[a] = int64_t(std::ceil((double(x[a]) + radius - layer.origin[a]) / layer.step));
+  }
+  int64_t k[3];
+  for (k[0] = lo[0]; k[0] <= hi[0]; ++k[0])
+    for (k[1] = lo[1]; k[1] <= hi[1]; ++k[1])
+      for (k[2] = lo[2]; k[2] <= hi[2]; ++k[2]) {
+        double sc, d2;
+        eval(k, &sc, &d2);
+        if (d2 <= r2 && (sc < *best_score || (sc == *best_score && d2 < *best_d2))) {
+          *best_score = sc;
+          *best_d2 = d2;
         }
-    double d2 = 0;
-    for (int a = 0; a < 3; ++a) d2 += (double(qv[a]) - double(x[a])) * (double(qv[a]) - double(x[a]));
-    const int cost = residual_cost(qv[0] - pred[0]) + residual_cost(qv[1] - pred[1]) + residual_cost(qv[2] - pred[2]);
-    EXPECT_EQ(cost, best_cost) << "trial " << trial;
-    EXPECT_NEAR(d2, best_d2, 1e-9) << "trial " << trial;
+      }
+}
+
+TEST(Snap, FindsWhatASearchOfEveryLatticePointFinds) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 3000; ++trial) {
+    ResidualLayer layer;
+    layer.step = 1.0;
+    layer.origin[0] = layer.origin[1] = layer.origin[2] = 0.0;
+    const double radius = 0.8 + 6.0 * u(rng);  // refinements from the coarsest to about 8
+    const double weight = trial % 3 == 0 ? 0.5 * u(rng) : 0.0;
+    float x[3];
+    int64_t pred[3];
+    int32_t qv[3];
+    const double spread = trial % 2 ? 3 * radius : 80.0;  // near and far predictions
+    for (int a = 0; a < 3; ++a) {
+      x[a] = float(100 + 20 * u(rng));
+      pred[a] = int64_t(std::llround(x[a] + spread * (2 * u(rng) - 1)));
+      qv[a] = int32_t(std::lround(x[a]));
+    }
+    double want_score, want_d2;
+    brute_force_snap(layer, x, radius, weight, pred, qv, &want_score, &want_d2);
+    snap_vertex(layer, x, radius, weight, pred, qv);
+    const int64_t got[3] = {qv[0], qv[1], qv[2]};
+    double got_d2 = 0;
+    int bits = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double d = double(grid_to_model(layer, a, got[a])) - double(x[a]);
+      got_d2 += d * d;
+      bits += residual_cost(got[a] - pred[a]);
+    }
+    ASSERT_LE(got_d2, radius * radius) << "trial " << trial;
+    ASSERT_DOUBLE_EQ(bits + weight * got_d2 / (radius * radius), want_score) << "trial " << trial;
+    ASSERT_DOUBLE_EQ(got_d2, want_d2) << "trial " << trial;
   }
 }
 

@@ -5,7 +5,6 @@
 #include <cstdint>
 
 #include "encoder/parallel.h"
-#include "encoder/rate/residual_plan.h"
 
 namespace dcurve {
 
@@ -15,21 +14,26 @@ namespace {
 // bound (half-diagonal s * sqrt(3) / 2), shrunk by a margin that absorbs float32 output rounding.
 double coarsest_step(double max_distance) { return 2.0 * max_distance / std::sqrt(3.0) * (1.0 - 1e-3); }
 
-// The finer grid choose_grid tries, this much finer than the coarsest. The residual layer
-// keeps a prediction wherever it lies within the tolerance ball, so its bits go to the
-// predictions that leave the ball. Predictions are built from decoded grid values and
-// rounded to the grid, so each carries up to half a step of rounding per axis; on the
-// coarsest grid the ball reaches only 0.87 steps, and that rounding alone pushes slow,
-// smooth motion out of it. A finer grid shrinks the rounding against the ball, at the price
-// of larger residuals where a prediction does leave and of more bits for frames coded from
-// nothing, which fast motion pays for (elastic-cow, tolerance 1e-4). 1.4 and 1.5 were
-// measured (whole files at 1e-3); 1.5 codes the XPBD rope 40 % smaller.
-constexpr double kGridRefinement = 1.5;
+// The grids choose_grid tries, as refinements of the coarsest. The residual layer keeps a
+// prediction wherever it lies within the tolerance ball, so its bits go to the predictions
+// that leave the ball. Predictions are built from decoded grid values and rounded to the
+// grid, so each carries up to half a step of rounding per axis; on the coarsest grid the
+// ball reaches only 0.87 steps, and that rounding alone pushes slow, smooth motion out of
+// it. A finer grid shrinks the rounding against the ball, and lets motion maps and the
+// low-rank model move by fractions of the coarsest step, at the price of larger residuals
+// where a prediction does leave and of more bits for frames coded from nothing, which fast
+// motion pays for. The best refinement depends on the sequence (whole files at 1e-3:
+// horse-gallop 1.5, cantilever 2, chicken-crossing and neck 3, rope-small and sheet 4, the
+// 100-frame rope 6 or finer), and a finer grid costs encode time, as snapping searches more
+// points: the search starts at kFirstTrials and moves only towards the better, and stops
+// at 4 (finer grids took the 100-frame rope from 62 s to over 10 minutes to encode).
+constexpr double kGridRefinements[kGridTrialSlots] = {1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0};
+constexpr size_t kFirstTrials[2] = {1, 3};
 
 // Frames of the trial encodes: the whole animation up to kTrialVertexFrames vertices x
 // frames (the sheet scene's 90 frames favour the finer grid, its middle 33 the coarsest),
-// else a run of kTrialFrames or more from its middle, long enough for the hierarchical
-// order below.
+// else a run of kTrialFrames or more from its middle, long enough for the residual
+// layer's hierarchical coding orders.
 constexpr uint32_t kTrialFrames = 33;
 constexpr uint64_t kTrialVertexFrames = 500000;
 
@@ -55,37 +59,50 @@ ResidualLayer make_grid(const Animation& anim, double max_distance, double refin
   return r;
 }
 
-ResidualLayer choose_grid(const Model& model, const Animation& anim, double max_distance, int threads) {
+GridChoice choose_grid(const Animation& anim, double max_distance, int threads, const GridTrial& trial) {
   const uint32_t F = uint32_t(anim.frames.size());
   const uint64_t wanted = std::max<uint64_t>(kTrialFrames, kTrialVertexFrames / std::max(anim.vertex_count, 1u));
   const uint32_t count = uint32_t(std::min<uint64_t>(F, wanted)), first = (F - count) / 2;
   Animation part;
   part.vertex_count = anim.vertex_count;
+  part.faces = anim.faces;
+  part.frame_rate = anim.frame_rate;
   part.frames.assign(anim.frames.begin() + first, anim.frames.begin() + first + count);
-  const double refinements[2] = {1.0, kGridRefinement};
-  ResidualLayer grids[2];
-  size_t bytes[2] = {SIZE_MAX, SIZE_MAX};
-  parallel_for(2, threads, [&](size_t i) {
-    grids[i] = make_grid(anim, max_distance, refinements[i]);
-    Model trial;
-    trial.meta = model.meta;
-    trial.meta.frame_count = count;
-    trial.faces = model.faces;
-    trial.curves = model.curves;
-    trial.residual = grids[i];
-    std::vector<int32_t> q;
-    if (!quantize_to_grid(part, grids[i], &q, nullptr)) return;
-    // One hierarchical order without clusters: it ranks the grids like the whole search
-    // (horse-gallop, chicken-crossing, crane, cloth-sphere, elastic-cow, the rope scenes)
-    // at a fraction of its cost.
-    ResidualPlanOptions po;
-    po.gop_sizes = {8};
-    po.cluster_layouts.clear();
-    po.threads = 1;
-    const PredictorPlan plan = choose_plan_and_grid(trial, part.frames, max_distance * (1.0 - 1e-6), &q, {}, po);
-    bytes[i] = encode_residuals(trial, q, &plan).size();
-  });
-  return bytes[1] < bytes[0] ? grids[1] : grids[0];
+  size_t bytes[kGridTrialSlots];
+  bool tried[kGridTrialSlots] = {};
+  ResidualLayer grids[kGridTrialSlots];
+  for (size_t i = 0; i < kGridTrialSlots; ++i) grids[i] = make_grid(anim, max_distance, kGridRefinements[i]);
+  auto run = [&](const std::vector<size_t>& slots) {
+    // Trials run side by side, one thread each, while there are more of them than threads.
+    const int each = slots.size() > 1 ? 1 : threads;
+    parallel_for(slots.size(), threads, [&](size_t k) {
+      const size_t i = slots[k];
+      // A tolerance too tiny for a refined grid's range gives the coarsest grid again.
+      bytes[i] = i > 0 && grids[i].step == grids[0].step ? SIZE_MAX : trial(grids[i], part, i, each);
+    });
+    for (size_t i : slots) tried[i] = true;
+  };
+  auto best = [&]() {
+    size_t b = SIZE_MAX;
+    for (size_t i = 0; i < kGridTrialSlots; ++i)
+      if (tried[i] && (b == SIZE_MAX || bytes[i] < bytes[b])) b = i;  // the coarsest among equals
+    return b;
+  };
+  run({kFirstTrials[0], kFirstTrials[1]});
+  for (;;) {
+    const size_t b = best();
+    std::vector<size_t> next;
+    if (b > 0 && !tried[b - 1]) next.push_back(b - 1);
+    if (b + 1 < kGridTrialSlots && !tried[b + 1]) next.push_back(b + 1);
+    if (next.empty()) break;
+    run(next);
+  }
+  GridChoice choice;
+  choice.slot = best();
+  if (bytes[choice.slot] == SIZE_MAX) choice.slot = 0;  // every trial failed: the encode will say why
+  choice.grid = grids[choice.slot];
+  choice.whole = count == F && bytes[choice.slot] != SIZE_MAX;
+  return choice;
 }
 
 bool quantize_to_grid(const Animation& anim, const ResidualLayer& grid, std::vector<int32_t>* q,

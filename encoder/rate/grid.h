@@ -2,6 +2,7 @@
 // within tolerance * L of the input.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,12 +18,24 @@ namespace dcurve {
 // minimum over all frames, so grid values start at 0.
 ResidualLayer make_grid(const Animation& anim, double max_distance, double refinement = 1.0);
 
-// The coarsest grid or a finer one (grid.cpp says why), whichever codes `anim` (or, when
-// it is large, a run of frames from its middle) smaller with the residual layer alone.
-// `model` supplies counts, faces and curves, as the residual layer will see them.
-// threads: 0 = all cores; the choice never depends on it. Costs two residual encodes with
-// one coding order and no clusters.
-ResidualLayer choose_grid(const Model& model, const Animation& anim, double max_distance, int threads);
+// Bytes of `part` (frames of the animation) coded on `grid` by a trial encode, SIZE_MAX
+// when it fails. `slot` (< kGridTrialSlots) names the grid tried, so the caller can keep
+// that trial's result; `threads` is what the trial may use (0 = all cores).
+constexpr size_t kGridTrialSlots = 7;
+using GridTrial = std::function<size_t(const ResidualLayer& grid, const Animation& part, size_t slot, int threads)>;
+
+struct GridChoice {
+  ResidualLayer grid;
+  size_t slot = 0;     // the trial that chose it
+  bool whole = false;  // the trials coded the whole animation: that trial is the encode
+};
+
+// The coarsest grid or a finer one (grid.cpp lists them and says why), whichever codes
+// `anim` (or, when it is large, a run of frames from its middle) smallest by `trial`. The
+// refinements are searched from two, then around the best while it moves: four trials
+// for most inputs.
+// threads: 0 = all cores; the choice never depends on it.
+GridChoice choose_grid(const Animation& anim, double max_distance, int threads, const GridTrial& trial);
 
 // Rounds every frame to the grid: q[(f * V + v) * 3 + axis]. Fails when a value would not fit
 // an int32 (a tolerance far too small for the motion's range).

@@ -58,42 +58,59 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, doub
     for (int a = 0; a < 3; ++a) qv[a] = int32_t(pred[a]);  // admissible, so within int32 range
     return;
   }
-  // The score separates by axis: each axis's candidate values, squared distances and bits
-  // are computed once, not once per lattice point (snapping was half of an encode's time).
-  int64_t lo[3], best[3];
-  thread_local std::vector<double> axis_d2[3];
-  thread_local std::vector<int> axis_bits[3];
+  // The score separates by axis, and on each axis the bits depend only on the band of
+  // |value - prediction| (0, 1, 2..3, 4..7, ...). Within a band the value nearest the
+  // input scores best (same bits, less distance) and keeps every other axis admissible, so
+  // only one value per axis and band can win: a few per axis, instead of every lattice
+  // point of the ball, whose count grows with the cube of the grid refinement.
+  struct Option {
+    int bits;
+    double d2;
+    int64_t k;
+  };
+  thread_local std::vector<Option> options[3];
+  int64_t best[3];
   for (int a = 0; a < 3; ++a) {
-    lo[a] = int64_t(std::floor((double(x[a]) - radius - layer.origin[a]) / layer.step));
+    std::vector<Option>& o = options[a];
+    o.clear();
+    const int64_t lo = int64_t(std::floor((double(x[a]) - radius - layer.origin[a]) / layer.step));
     const int64_t hi = int64_t(std::ceil((double(x[a]) + radius - layer.origin[a]) / layer.step));
-    axis_d2[a].clear();
-    axis_bits[a].clear();
-    for (int64_t k = lo[a]; k <= hi; ++k) {
+    for (int64_t k = lo; k <= hi; ++k) {
       const double d = double(grid_to_model(layer, a, k)) - double(x[a]);
-      axis_d2[a].push_back(d * d);
-      axis_bits[a].push_back(residual_cost(k - pred[a]));
+      if (d * d > r2) continue;
+      const int bits = residual_cost(k - pred[a]);
+      auto same = std::find_if(o.begin(), o.end(), [&](const Option& e) { return e.bits == bits; });
+      if (same == o.end())
+        o.push_back({bits, d * d, k});
+      else if (d * d < same->d2)
+        *same = {bits, d * d, k};
     }
+    std::sort(o.begin(), o.end(), [](const Option& u, const Option& v) { return u.bits < v.bits; });
     best[a] = qv[a];
   }
   double best_d2 = distance2(layer, x, best), best_score = score(best, best_d2);
-  // Partial squared distances already beyond the radius skip the rest of the box.
-  for (size_t i = 0; i < axis_d2[0].size(); ++i) {
-    if (axis_d2[0][i] > r2) continue;
-    for (size_t j = 0; j < axis_d2[1].size(); ++j) {
-      const double d01 = axis_d2[0][i] + axis_d2[1][j];
-      if (d01 > r2) continue;
-      for (size_t l = 0; l < axis_d2[2].size(); ++l) {
-        const double d2 = d01 + axis_d2[2][l];
+  // Options come cheapest first, and scores only grow with bits (distance_weight >= 0):
+  // once a prefix is dearer than the best point the rest of that list cannot win.
+  for (const Option& ox : options[0]) {
+    if (ox.bits > best_score) break;
+    for (const Option& oy : options[1]) {
+      if (ox.bits + oy.bits > best_score) break;
+      const double dxy = ox.d2 + oy.d2;
+      if (dxy > r2) continue;
+      for (const Option& oz : options[2]) {
+        const int bits = ox.bits + oy.bits + oz.bits;
+        if (bits > best_score) break;
+        const double d2 = dxy + oz.d2;
         if (d2 > r2) continue;
-        const double sc = (axis_bits[0][i] + axis_bits[1][j] + axis_bits[2][l]) + distance_weight * d2 / r2;
+        const double sc = bits + distance_weight * d2 / r2;
         // Among equally cheap points the one nearest the input: it leaves the most room
         // before later predictions leave the ball (the first found would drift to a corner).
         if (sc < best_score || (sc == best_score && d2 < best_d2)) {
           best_score = sc;
           best_d2 = d2;
-          best[0] = lo[0] + int64_t(i);
-          best[1] = lo[1] + int64_t(j);
-          best[2] = lo[2] + int64_t(l);
+          best[0] = ox.k;
+          best[1] = oy.k;
+          best[2] = oz.k;
         }
       }
     }
