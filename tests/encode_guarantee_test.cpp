@@ -62,12 +62,7 @@ TEST_P(Guarantee, EveryFrameWithinTolerance) {
 class BuiltinGuarantee : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(BuiltinGuarantee, WithinToleranceAndSizeShrinksAsToleranceLoosens) {
-  Scene scene;
-  std::string err;
-  ASSERT_TRUE(builtin_scene(GetParam(), &scene, &err)) << err;
-  scene.frames = 12;
-  Animation anim;
-  ASSERT_TRUE(simulate_scene(scene, &anim, {}, &err)) << err;
+  const Animation anim = test::simulate_builtin(GetParam(), 12);
   std::vector<uint64_t> sizes = check_tolerances(anim, GetParam());
   for (size_t k = 1; k < sizes.size(); ++k) EXPECT_LT(sizes[k], sizes[k - 1]) << GetParam();
 }

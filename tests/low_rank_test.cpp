@@ -16,6 +16,7 @@
 #include "encoder/encoder.h"
 #include "encoder/metrics.h"
 #include "encoder/sim/scene.h"
+#include "test_util.h"
 
 namespace dcurve {
 namespace {
@@ -129,12 +130,7 @@ TEST(LowRank, ChosenOnALowRankAnimationAndWithinToleranceEveryFrame) {
 }
 
 TEST(LowRank, BuiltinSceneWithinToleranceEveryFrame) {
-  Scene scene;
-  std::string err;
-  ASSERT_TRUE(builtin_scene("cantilever", &scene, &err)) << err;
-  scene.frames = 16;
-  Animation anim;
-  ASSERT_TRUE(simulate_scene(scene, &anim, {}, &err)) << err;
+  const Animation anim = test::simulate_builtin("cantilever", 16);
   for (int k : {-1, 3}) {
     EncodeReport rep;
     const std::vector<uint8_t> bytes = encode(anim, k, &rep);

@@ -12,6 +12,7 @@
 #include "encoder/rate/motion_choice.h"
 #include "encoder/rate/motion_costs.h"
 #include "encoder/sim/scene.h"
+#include "test_util.h"
 
 namespace dcurve {
 namespace {
@@ -187,12 +188,8 @@ TEST(MotionChoice, AlternativesMixTheBestMotionOfEachSlot) {
 // On a simulated scene the fitted motions do not pay: the encode with --model pde is no
 // larger than without a model, decodes within the tolerance and does not depend on threads.
 TEST(MotionChoice, PdeEncodeIsNeverLargerThanNone) {
-  Scene scene;
+  const Animation anim = test::simulate_builtin("rope-small", 6);
   std::string err;
-  ASSERT_TRUE(builtin_scene("rope-small", &scene, &err)) << err;
-  scene.frames = 6;
-  Animation anim;
-  ASSERT_TRUE(simulate_scene(scene, &anim, {}, &err)) << err;
   EncodeOptions none;
   std::vector<uint8_t> plain_bytes;
   ASSERT_TRUE(encode_animation(anim, none, &plain_bytes, nullptr, &err)) << err;

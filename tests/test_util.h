@@ -1,4 +1,5 @@
-// Helpers shared by the tests: running the CLI, reading a few frames of the real corpus.
+// Helpers shared by the tests: running the CLI, reading a few frames of the real corpus,
+// simulating a shortened built-in scene.
 #pragma once
 #include <sys/wait.h>
 
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "encoder/io/frames.h"
+#include "encoder/sim/scene.h"
 
 namespace dcurve::test {
 
@@ -47,6 +49,17 @@ inline Animation read_corpus_frames(const std::string& sequence, int count, int 
     anim.faces = faces;
     anim.frames.push_back(std::move(xyz));
   }
+  return anim;
+}
+
+// Simulates the first `frames` (>= 1) frames of a built-in scene, or fails the test.
+inline Animation simulate_builtin(const std::string& name, uint32_t frames) {
+  Scene scene;
+  std::string err;
+  if (!builtin_scene(name, &scene, &err)) throw std::runtime_error(err);
+  scene.frames = frames;
+  Animation anim;
+  if (!simulate_scene(scene, &anim, {}, &err)) throw std::runtime_error(err);
   return anim;
 }
 
