@@ -115,10 +115,11 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
 }
 
 // The model every encode starts from: faces, curves, and the grid chosen by trial encodes
-// of encode_plain. When the trials coded the whole animation, *plain receives the winning
-// trial, which is then the plain encode itself (else it is left empty).
+// of encode_plain. When the trials coded the whole animation, the winning trial is the
+// plain encode itself: *plain and *residual_only (as encode_plain fills them) receive it and
+// *have_plain is set.
 bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, Model* plain,
-                 std::string* curve_fallback, std::string* error) {
+                 Model* residual_only, bool* have_plain, std::string* curve_fallback, std::string* error) {
   Model& m = out->model;
   const double L = bbox_diagonal(anim.frames[0]);
   m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), anim.frame_rate, opt.tolerance, L, ""};
@@ -134,7 +135,11 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
   // ranked the grids wrongly on half of the corpus.
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
-  std::vector<Model> trials(kGridTrialSlots);
+  if (opt.grid_refinement > 0) {
+    m.residual = make_grid(anim, opt.tolerance * L, opt.grid_refinement);
+    return quantize_to_grid(anim, m.residual, &out->rounded, error);
+  }
+  std::vector<Model> trials(kGridTrialSlots), trials_residual_only(kGridTrialSlots);
   const GridChoice choice =
       choose_grid(anim, opt.tolerance * L, opt.threads,
                   [&](const ResidualLayer& grid, const Animation& part, size_t slot, int threads) -> size_t {
@@ -146,11 +151,16 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                     if (!quantize_to_grid(part, grid, &s.rounded, nullptr)) return SIZE_MAX;
                     EncodeOptions o = plain_opt;
                     o.threads = threads;
-                    if (!encode_plain(part, o, s, &trials[slot], nullptr, nullptr)) return SIZE_MAX;
+                    if (!encode_plain(part, o, s, &trials[slot], &trials_residual_only[slot], nullptr))
+                      return SIZE_MAX;
                     return write_container(trials[slot], wo).size();
                   });
   m.residual = choice.grid;
-  if (choice.whole) *plain = std::move(trials[choice.slot]);
+  *have_plain = choice.whole;
+  if (choice.whole) {
+    *plain = std::move(trials[choice.slot]);
+    *residual_only = std::move(trials_residual_only[choice.slot]);
+  }
   return quantize_to_grid(anim, m.residual, &out->rounded, error);
 }
 
@@ -207,6 +217,8 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (!(opt.tolerance > 0 && opt.tolerance <= 0.5)) return fail(error, "tolerance must be in (0, 0.5]");
   if (opt.curve_points < 2) return fail(error, "target curve length must be at least 2 points");
   if (opt.low_rank < -1 || opt.low_rank > 64) return fail(error, "low-rank setting must be -1 (auto), 0 (off) or 1..64");
+  if (!(opt.grid_refinement == 0 || (opt.grid_refinement >= 1 && opt.grid_refinement <= 16)))
+    return fail(error, "grid refinement must be 0 (chosen by trial encodes) or in [1, 16]");
   if (opt.model != ModelChoice::None && opt.low_rank > 0 && opt.keep_all_motions)
     return fail(error, "a low-rank model cannot be combined with a PDE motion model");
   if (!(bbox_diagonal(anim.frames[0]) > 0)) return fail(error, "rest pose has a zero bounding box (all vertices coincide)");
@@ -214,15 +226,12 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   EncodeReport rep;
   GridStart start;
   Model m, residual_only;
-  if (!start_model(anim, opt, &start, &m, &rep.curve_fallback, error)) return false;
+  bool have_plain = false;
+  if (!start_model(anim, opt, &start, &m, &residual_only, &have_plain, &rep.curve_fallback, error)) return false;
   // The file without a PDE model comes first: with --model none it is the file, otherwise
   // the motion model has to beat it, value by value and as a whole file.
   progress(0.1);
-  // The PDE model competes with the residual layer alone, which the grid trials keep not.
-  const bool have_plain = !m.residual.payload.empty() && opt.model == ModelChoice::None;
-  if (!have_plain &&
-      !encode_plain(anim, opt, start, &m, opt.model == ModelChoice::None ? nullptr : &residual_only, error))
-    return false;
+  if (!have_plain && !encode_plain(anim, opt, start, &m, &residual_only, error)) return false;
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
   *out = write_container(m, wo);
@@ -255,6 +264,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (!read_container(out->data(), out->size(), &written, error, &sections)) return false;
   rep.connectivity_bytes = connectivity_bytes(sections);
   rep.low_rank_components = m.low_rank.components;
+  rep.grid_refinement = grid_refinement(m.residual.step, opt.tolerance * m.meta.diag);
   for (const SectionInfo& s : sections) {
     if (s.tag == "LRNK") rep.low_rank_bytes = s.stored_bytes + kSectionHeaderBytes;
     if (s.tag == "SEGS" && !m.segments.empty()) rep.model_bytes = s.raw_bytes;

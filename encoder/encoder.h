@@ -38,6 +38,10 @@ struct EncodeOptions {
   // -1 automatic (kept only where the file gets smaller), 0 off, 1..64 that many components
   // always. Not combined with a PDE model (automatic turns off, a count is an error).
   int low_rank = -1;
+  // Residual grid: 0 chosen by trial encodes (encoder/rate/grid.h; most inputs cost four
+  // plain encodes), else the coarsest safe grid made this many times finer, in [1, 16],
+  // which skips the trials.
+  double grid_refinement = 0;
   // With a PDE model: keep every fitted motion even where it does not pay for its
   // coefficients (in-betweens then follow the model everywhere; the file may be larger).
   // Off: only paying motions are kept, and the file is the one without a PDE model when
@@ -62,6 +66,7 @@ struct EncodeReport {
   uint64_t low_rank_bytes = 0;      // its LRNK section as stored, header included
   uint32_t motions_fitted = 0;      // PDE motions (segment, curve, axis) fitted, 0 without a model
   uint32_t motions_kept = 0;        // of them, the non-Zero motions in the file
+  double grid_refinement = 0;       // the residual grid: how many times finer than the coarsest safe one
 };
 
 // Encodes `anim` into `out`. The returned error stats come from decoding `out` with the

@@ -111,7 +111,8 @@ TEST(Cli, EncodeDecodeInfoEndToEnd) {
   Animation anim = read_corpus_frames("cloth-sphere", 6, 20);
   std::string err;
   ASSERT_TRUE(write_frame_folder(dir / "in", anim, "obj", &err)) << err;
-  CommandResult e = run_cli("encode " + dir / "in" + " -o " + dir / "c.dcrv --tolerance 1e-3 --json");
+  // A given grid skips the grid trials (tested in encode_guarantee_test), four encodes here.
+  CommandResult e = run_cli("encode " + dir / "in" + " -o " + dir / "c.dcrv --tolerance 1e-3 --grid 1.5 --json");
   ASSERT_EQ(e.exit_code, 0) << e.output;
   EXPECT_NE(e.output.find("\"max_error\""), std::string::npos);
   CommandResult i = run_cli("info " + dir / "c.dcrv --json");
@@ -128,7 +129,7 @@ TEST(Cli, EncodeDecodeInfoEndToEnd) {
   ASSERT_EQ(back.frames.size(), anim.frames.size());
   // Default: the same triangles with the same windings, in the face coder's order.
   EXPECT_EQ(canonical_triangles(back.faces), canonical_triangles(anim.faces));
-  ASSERT_EQ(run_cli("encode " + dir / "in" + " -o " + dir / "x.dcrv --exact-face-order").exit_code, 0);
+  ASSERT_EQ(run_cli("encode " + dir / "in" + " -o " + dir / "x.dcrv --exact-face-order --grid 1.5").exit_code, 0);
   ASSERT_EQ(run_cli("decode " + dir / "x.dcrv -o " + dir / "xout --frames 1").exit_code, 0);
   Animation exact;
   ASSERT_TRUE(read_frame_folder(dir / "xout", &exact, &err)) << err;
@@ -136,12 +137,13 @@ TEST(Cli, EncodeDecodeInfoEndToEnd) {
   ASSERT_EQ(run_cli("decode " + dir / "c.dcrv -o " + dir / "one --t 0.5 --format ply").exit_code, 0);
   EXPECT_TRUE(std::filesystem::exists(dir / "one/frame_00000.ply"));
   // A PDE model whose motions do not pay leaves the file no larger than without one.
-  CommandResult p = run_cli("encode " + dir / "in" + " -o " + dir / "p.dcrv --model pde --segment-frames auto --json");
+  CommandResult p = run_cli("encode " + dir / "in" + " -o " + dir / "p.dcrv --model pde --segment-frames auto --grid 1.5 --json");
   ASSERT_EQ(p.exit_code, 0) << p.output;
   const nlohmann::json with = nlohmann::json::parse(p.output), without = nlohmann::json::parse(e.output);
   EXPECT_GT(with["motions_fitted"].get<int>(), 0);
   EXPECT_LE(with["motions_kept"].get<int>(), with["motions_fitted"].get<int>());
   EXPECT_LE(with["bytes"].get<int>(), without["bytes"].get<int>());
+  EXPECT_DOUBLE_EQ(without["grid_refinement"].get<double>(), 1.5);
 }
 
 }  // namespace

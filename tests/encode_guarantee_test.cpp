@@ -88,6 +88,7 @@ TEST(Guarantee, PdeModelKeepsTheGuaranteeAndSmoothInBetweens) {
     opt.model = model;
     opt.segment_frames = 2;
     opt.keep_all_motions = true;
+    opt.grid_refinement = 1.5;  // the grid is not what this test is about: skip its trials
     std::vector<uint8_t> bytes;
     EncodeReport rep;
     std::string err;
@@ -115,6 +116,28 @@ TEST(Guarantee, PdeModelKeepsTheGuaranteeAndSmoothInBetweens) {
       EXPECT_LE(worst, step + opt.tolerance * L) << "frame " << f;
     }
   }
+}
+
+// The grid the trial encodes choose gives the same file as that grid given, for any thread
+// count: the winning trial stands in for the plain encode when it coded every frame.
+TEST(Guarantee, ChosenGridEncodesLikeTheSameGridGiven) {
+  const Animation anim = test::simulate_builtin("cantilever", 12);
+  EncodeOptions opt;
+  std::vector<uint8_t> chosen, given, one_thread;
+  EncodeReport rep;
+  std::string err;
+  ASSERT_TRUE(encode_animation(anim, opt, &chosen, &rep, &err)) << err;
+  EXPECT_GT(rep.grid_refinement, 1.01);  // slow, smooth motion: a finer grid than the coarsest
+  opt.threads = 1;
+  ASSERT_TRUE(encode_animation(anim, opt, &one_thread, nullptr, &err)) << err;
+  EXPECT_EQ(one_thread, chosen);
+  opt.grid_refinement = rep.grid_refinement;
+  EncodeReport given_rep;
+  ASSERT_TRUE(encode_animation(anim, opt, &given, &given_rep, &err)) << err;
+  EXPECT_EQ(given, chosen);
+  EXPECT_DOUBLE_EQ(given_rep.grid_refinement, rep.grid_refinement);
+  opt.grid_refinement = 0.5;
+  EXPECT_FALSE(encode_animation(anim, opt, &given, nullptr, &err));
 }
 
 TEST(Guarantee, NoJumpsBetweenFrames) {

@@ -88,7 +88,8 @@ Model sheet_model(uint32_t side, uint32_t frames, Pose pose, Animation* anim) {
   return m;
 }
 
-// The residual layer alone as the trial encode: what the grid changes most.
+// The residual layer alone, one coding order and no clusters, as the trial encode: what
+// the grid changes most.
 GridTrial residual_trial(const Model& model, double max_distance) {
   return [&model, max_distance](const ResidualLayer& grid, const Animation& part, size_t, int threads) -> size_t {
     Model trial = model;
@@ -97,6 +98,8 @@ GridTrial residual_trial(const Model& model, double max_distance) {
     std::vector<int32_t> q;
     if (!quantize_to_grid(part, grid, &q, nullptr)) return SIZE_MAX;
     ResidualPlanOptions po;
+    po.gop_sizes = {8};
+    po.cluster_layouts.clear();
     po.threads = threads;
     const PredictorPlan plan = choose_plan_and_grid(trial, part.frames, max_distance * (1.0 - 1e-6), &q, {}, po);
     return encode_residuals(trial, q, &plan).size();

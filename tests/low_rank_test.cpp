@@ -52,6 +52,7 @@ std::vector<uint8_t> encode(const Animation& anim, int low_rank, EncodeReport* r
   EncodeOptions o;
   o.tolerance = 1e-3;
   o.low_rank = low_rank;
+  o.grid_refinement = 1.5;  // the grid search is grid_test's and encode_guarantee_test's
   std::vector<uint8_t> bytes;
   std::string err;
   EXPECT_TRUE(encode_animation(anim, o, &bytes, rep, &err)) << err;

@@ -39,6 +39,8 @@ constexpr uint64_t kTrialVertexFrames = 500000;
 
 }  // namespace
 
+double grid_refinement(double step, double max_distance) { return coarsest_step(max_distance) / step; }
+
 ResidualLayer make_grid(const Animation& anim, double max_distance, double refinement) {
   ResidualLayer r;
   double extent = 0;

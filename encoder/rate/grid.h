@@ -30,6 +30,9 @@ struct GridChoice {
   bool whole = false;  // the trials coded the whole animation: that trial is the encode
 };
 
+// How many times finer than the coarsest safe grid for `max_distance` a grid of `step` is.
+double grid_refinement(double step, double max_distance);
+
 // The coarsest grid or a finer one (grid.cpp lists them and says why), whichever codes
 // `anim` (or, when it is large, a run of frames from its middle) smallest by `trial`. The
 // refinements are searched from two, then around the best while it moves: four trials
