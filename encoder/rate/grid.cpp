@@ -24,14 +24,14 @@ double coarsest_step(double max_distance) { return 2.0 * max_distance / std::sqr
 // where a prediction does leave and of more bits for frames coded from nothing, which fast
 // motion pays for. The best refinement depends on the sequence (whole files at 1e-3:
 // horse-gallop 1.5, cantilever 2, chicken-crossing and neck 3, rope-small and sheet 4, the
-// 100-frame rope 6 or finer), and a finer grid costs encode time, as snapping searches more
-// points: the search starts at kFirstTrials and moves only towards the better, and stops
-// at 4 (finer grids took the 100-frame rope from 62 s to over 10 minutes to encode).
+// 100-frame rope 8), and each trial is a whole plain encode: the search starts at
+// kFirstTrials and moves only towards the better, so most inputs cost four trials.
 constexpr double kGridRefinements[kGridTrialSlots] = {1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0};
 constexpr size_t kFirstTrials[2] = {1, 3};
 
 // Frames of the trial encodes: the whole animation up to kTrialVertexFrames vertices x
-// frames (the sheet scene's 90 frames favour the finer grid, its middle 33 the coarsest),
+// frames (a short run can rank the grids otherwise than the whole: with residual-only
+// trials, the sheet scene's 90 frames favoured a finer grid, its middle 33 the coarsest),
 // else a run of kTrialFrames or more from its middle, long enough for the residual
 // layer's hierarchical coding orders.
 constexpr uint32_t kTrialFrames = 33;
