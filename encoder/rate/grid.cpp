@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <thread>
 
 #include "encoder/parallel.h"
 
@@ -75,8 +76,9 @@ GridChoice choose_grid(const Animation& anim, double max_distance, int threads, 
   ResidualLayer grids[kGridTrialSlots];
   for (size_t i = 0; i < kGridTrialSlots; ++i) grids[i] = make_grid(anim, max_distance, kGridRefinements[i]);
   auto run = [&](const std::vector<size_t>& slots) {
-    // Trials run side by side, one thread each, while there are more of them than threads.
-    const int each = slots.size() > 1 ? 1 : threads;
+    // Trials run side by side and share the threads.
+    const size_t all = threads > 0 ? size_t(threads) : size_t(std::max(1u, std::thread::hardware_concurrency()));
+    const int each = int(std::max<size_t>(1, all / slots.size()));
     parallel_for(slots.size(), threads, [&](size_t k) {
       const size_t i = slots[k];
       // A tolerance too tiny for a refined grid's range gives the coarsest grid again.
