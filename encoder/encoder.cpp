@@ -95,9 +95,10 @@ struct GridStart {
 
 // The encode without a PDE model: the residual layer alone, with a low-rank model where it
 // pays. `residual_only` (may be null) receives it before the low-rank choice: what a PDE
-// motion competes with inside a file, which cannot also carry a low-rank model.
+// motion competes with inside a file, which cannot also carry a low-rank model. `bytes`
+// (may be null) receives the whole file's size, as the low-rank choice measured it.
 bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridStart& start, Model* m,
-                  Model* residual_only, std::string* error) {
+                  Model* residual_only, std::string* error, uint64_t* bytes = nullptr) {
   *m = start.model;
   std::vector<int32_t> q = start.rounded;
   ResidualPlanOptions po;
@@ -111,7 +112,10 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   LowRankChoiceOptions lro;
   lro.components = opt.low_rank;
   lro.threads = opt.threads;
-  return choose_low_rank(m, anim.frames, start.rounded, start.snap, wo, lro, nullptr, error);
+  LowRankChoiceReport rep;
+  if (!choose_low_rank(m, anim.frames, start.rounded, start.snap, wo, lro, &rep, error)) return false;
+  if (bytes) *bytes = rep.bytes;
+  return true;
 }
 
 // The model every encode starts from: faces, curves, and the grid chosen by trial encodes
@@ -133,8 +137,6 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
   // The grid is chosen by whole plain encodes, which see the faces, curves and low-rank
   // model the file keeps: cheaper proxies (the residual layer alone, fewer coding orders)
   // ranked the grids wrongly on half of the corpus.
-  WriteOptions wo;
-  wo.connectivity = opt.connectivity;
   if (opt.grid_refinement > 0) {
     m.residual = make_grid(anim, opt.tolerance * L, opt.grid_refinement);
     return quantize_to_grid(anim, m.residual, &out->rounded, error);
@@ -151,9 +153,10 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                     if (!quantize_to_grid(part, grid, &s.rounded, nullptr)) return SIZE_MAX;
                     EncodeOptions o = plain_opt;
                     o.threads = threads;
-                    if (!encode_plain(part, o, s, &trials[slot], &trials_residual_only[slot], nullptr))
+                    uint64_t bytes = 0;
+                    if (!encode_plain(part, o, s, &trials[slot], &trials_residual_only[slot], nullptr, &bytes))
                       return SIZE_MAX;
-                    return write_container(trials[slot], wo).size();
+                    return size_t(bytes);
                   });
   m.residual = choice.grid;
   *have_plain = choice.whole;

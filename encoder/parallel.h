@@ -9,6 +9,11 @@
 
 namespace dcurve {
 
+// How many threads `threads` means: itself when > 0, else every hardware thread (>= 1).
+inline size_t thread_count(int threads) {
+  return threads > 0 ? size_t(threads) : size_t(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 // Calls job(i) once for every i in [0, count), on up to `threads` threads (0: all hardware
 // threads; the calling thread is one of them). Returns when every job has finished.
 template <class Job>
@@ -17,8 +22,7 @@ void parallel_for(size_t count, int threads, Job job) {
   auto worker = [&]() {
     for (size_t i = next++; i < count; i = next++) job(i);
   };
-  size_t n = threads > 0 ? size_t(threads) : size_t(std::max(1u, std::thread::hardware_concurrency()));
-  n = std::min(n, std::max<size_t>(count, 1));
+  const size_t n = std::min(thread_count(threads), std::max<size_t>(count, 1));
   std::vector<std::thread> pool;
   for (size_t k = 1; k < n; ++k) pool.emplace_back(worker);
   worker();

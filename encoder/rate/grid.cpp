@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <thread>
 
 #include "encoder/parallel.h"
 
@@ -77,8 +76,7 @@ GridChoice choose_grid(const Animation& anim, double max_distance, int threads, 
   for (size_t i = 0; i < kGridTrialSlots; ++i) grids[i] = make_grid(anim, max_distance, kGridRefinements[i]);
   auto run = [&](const std::vector<size_t>& slots) {
     // Trials run side by side and share the threads.
-    const size_t all = threads > 0 ? size_t(threads) : size_t(std::max(1u, std::thread::hardware_concurrency()));
-    const int each = int(std::max<size_t>(1, all / slots.size()));
+    const int each = int(std::max<size_t>(1, thread_count(threads) / slots.size()));
     parallel_for(slots.size(), threads, [&](size_t k) {
       const size_t i = slots[k];
       // A tolerance too tiny for a refined grid's range gives the coarsest grid again.

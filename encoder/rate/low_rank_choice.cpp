@@ -119,7 +119,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   const uint32_t F = model->meta.frame_count;
   const size_t n = size_t(model->meta.vertex_count) * 3;
   const bool forced = options.components > 0;
-  rep.bytes_without = write_container(*model, write_options).size();
+  rep.bytes_without = rep.bytes = write_container(*model, write_options).size();
   if (report) *report = rep;
   if (options.components == 0) return true;
   if (options.components > int(kMaxLowRankComponents))
@@ -231,7 +231,10 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
       rep.basis_step = c.basis_step;
     }
   }
-  if (rep.components > 0) *model = std::move(best_model);
+  if (rep.components > 0) {
+    *model = std::move(best_model);
+    rep.bytes = best;
+  }
   if (report) *report = rep;
   return true;
 }

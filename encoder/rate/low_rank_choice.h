@@ -25,6 +25,7 @@ struct LowRankChoiceReport {
   double basis_step = 0;         // grid units
   uint32_t screened = 0, trials = 0;
   uint64_t bytes_without = 0;    // the whole file without a low-rank model
+  uint64_t bytes = 0;            // the whole file kept (bytes_without when it has no model)
 };
 
 // `model` holds a finished encode without a low-rank model (residual payload coded, no PDE
