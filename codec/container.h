@@ -12,7 +12,7 @@ namespace dcurve {
 // Version written by write_container. Readers accept any minor of their major: a newer minor
 // only adds optional sections and hint flags.
 constexpr uint16_t kFormatVersionMajor = 2;
-constexpr uint16_t kFormatVersionMinor = 0;
+constexpr uint16_t kFormatVersionMinor = 1;
 
 struct WriteOptions {
   // Store faces; engines that already hold the mesh can drop them. The residual layer

@@ -134,9 +134,71 @@ const Traversal& traversal_for(const Model& model, const ResidualOptions& option
   return *owned;
 }
 
+namespace {
+// x / 2^s rounded down (also for negative x).
+int64_t floor_shift(int64_t x, int s) { return x >= 0 ? x >> s : -((-x + (int64_t(1) << s) - 1) >> s); }
+
+int32_t clamp_weight(int64_t w) { return int32_t(std::clamp<int64_t>(w, -kGeometricLimit, kGeometricLimit)); }
+
+// Least-squares (alpha, beta) with v - a = alpha (b - a) + beta (c - a) in the geometry
+// frame. The differences are scaled to 12 bits first, so every product fits in int64.
+void triple_weights(const int32_t* qg, uint32_t v, uint32_t a, uint32_t b, uint32_t c, int32_t* w) {
+  int64_t d1[3], d2[3], x[3], m = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int64_t ga = qg[size_t(a) * 3 + size_t(k)];
+    d1[k] = qg[size_t(b) * 3 + size_t(k)] - ga;
+    d2[k] = qg[size_t(c) * 3 + size_t(k)] - ga;
+    x[k] = qg[size_t(v) * 3 + size_t(k)] - ga;
+    m = std::max({m, d1[k] < 0 ? -d1[k] : d1[k], d2[k] < 0 ? -d2[k] : d2[k], x[k] < 0 ? -x[k] : x[k]});
+  }
+  int s = 0;
+  while ((m >> s) > 4095) ++s;
+  int64_t g11 = 0, g12 = 0, g22 = 0, r1 = 0, r2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int64_t p = floor_shift(d1[k], s), q = floor_shift(d2[k], s), y = floor_shift(x[k], s);
+    g11 += p * p;
+    g12 += p * q;
+    g22 += q * q;
+    r1 += p * y;
+    r2 += q * y;
+  }
+  const int64_t det = g11 * g22 - g12 * g12;
+  if (det <= 0) {  // a degenerate triangle (or a curve's (p1, p1, p2)): the plain parallelogram
+    w[0] = kGeometricUnit;
+    w[1] = -kGeometricUnit;
+    return;
+  }
+  w[0] = clamp_weight(detail::rounded_mean(kGeometricUnit * (g22 * r1 - g12 * r2), det));
+  w[1] = clamp_weight(detail::rounded_mean(kGeometricUnit * (g11 * r2 - g12 * r1), det));
+}
+}  // namespace
+
+std::vector<int32_t> geometric_weights(const Traversal& t, const int32_t* qg) {
+  std::vector<int32_t> w(t.para.size() / 3 * 2);
+  for (uint32_t pos = 0; pos + 1 < uint32_t(t.para_offsets.size()); ++pos)
+    for (uint32_t k = t.para_offsets[pos]; k < t.para_offsets[pos + 1]; ++k)
+      triple_weights(qg, t.order[pos], t.para[3 * size_t(k)], t.para[3 * size_t(k) + 1], t.para[3 * size_t(k) + 2],
+                     &w[2 * size_t(k)]);
+  return w;
+}
+
+const int32_t* GeometricWeightsCache::get(const Traversal& t, const int32_t* q, uint32_t g) {
+  // Least recently used goes first, so the (up to three) frames one cluster asked for last
+  // stay valid while it asks for another.
+  for (size_t i = 0; i < entries_.size(); ++i)
+    if (entries_[i].first == g) {
+      std::rotate(entries_.begin() + std::ptrdiff_t(i), entries_.begin() + std::ptrdiff_t(i) + 1, entries_.end());
+      return entries_.back().second.data();
+    }
+  if (entries_.size() >= kCapacity) entries_.erase(entries_.begin());
+  entries_.emplace_back(g, geometric_weights(t, q + size_t(g) * t.order.size() * 3));
+  return entries_.back().second.data();
+}
+
 bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
                       const ResidualOptions& options) {
   auto ok = [&](uint32_t r) { return r < decoded.size() && r != f && decoded[r]; };
+  if (c.spatial == SpatialMode::Geometric && !ok(c.g)) return false;
   auto near = [](uint32_t a, uint32_t b) { return (a > b ? a - b : b - a) <= kMaxLinearSpan; };
   switch (c.kind) {
     case PredictorKind::None: return true;

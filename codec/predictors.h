@@ -34,14 +34,19 @@ enum class SpatialMode : uint8_t {
                       // Mean where the vertex has no parallelogram
   Blend = 3,          // rounded mean of the Mean and Parallelogram corrections: less noise
                       // than Parallelogram, less bias than Mean on smooth deformation
+  Geometric = 4,      // Parallelogram with each (a, b, c) weighted by where v lies against
+                      // it in a decoded frame g: err(a) + alpha (err(b) - err(a)) + beta
+                      // (err(c) - err(a)); exact for any affine motion of the patch on an
+                      // irregular mesh, where Parallelogram assumes v = a + b - c
 };
-constexpr uint8_t kSpatialModeCount = 4;
+constexpr uint8_t kSpatialModeCount = 5;
 
 // The predictor of one (frame, axis).
 struct PredictorChoice {
   PredictorKind kind = PredictorKind::Reference;
   uint32_t r0 = 0, r1 = 0;  // reference frames: Reference and Motion use r0, Linear r0 and r1
   SpatialMode spatial = SpatialMode::Parallelogram;
+  uint32_t g = 0;  // Geometric: the decoded frame whose shape gives the weights
 };
 
 // Linear references lie within this many frames of f and of each other, so the integer
@@ -106,12 +111,35 @@ inline int64_t rounded_mean(int64_t sum, int64_t count) {
 }
 }  // namespace detail
 
+// Geometric weights are in 1/kGeometricUnit, within [-kGeometricLimit, kGeometricLimit].
+constexpr int32_t kGeometricUnit = 256, kGeometricLimit = 1024;
+
+// The Geometric weights (alpha, beta) of every parallelogram of t, in t.para's order
+// (2 per triple), from the decoded values qg of the geometry frame (V vertices x 3).
+// Integer arithmetic throughout (format_spec/residual.md), so every platform agrees.
+std::vector<int32_t> geometric_weights(const Traversal& t, const int32_t* qg);
+
+// geometric_weights of the last few geometry frames one walk used: a frame's candidates,
+// and the next frames, mostly share them. Values of a frame must not change once asked for.
+class GeometricWeightsCache {
+ public:
+  // Weights of frame g of q (frame-major, V vertices); valid until kCapacity other frames
+  // were asked for.
+  const int32_t* get(const Traversal& t, const int32_t* q, uint32_t g);
+
+ private:
+  // A frame offers at most 16 candidates; the encoder's pools draw on fewer frames.
+  static constexpr size_t kCapacity = 16;
+  std::vector<std::pair<uint32_t, std::vector<int32_t>>> entries_;  // most recent last
+};
+
 // The spatial correction of traversal position `pos` on `axis`: see SpatialMode. qf is
 // frame f's values (earlier positions decoded); base(u) the base prediction of vertex u on
-// that axis under this position's predictor.
+// that axis under this position's predictor; weights the geometric_weights of the
+// choice's geometry frame (read only by Geometric).
 template <class Base>
 inline int64_t spatial_correction(SpatialMode mode, const Traversal& t, uint32_t pos, int axis, const int32_t* qf,
-                                  const Base& base) {
+                                  const Base& base, const int32_t* weights = nullptr) {
   if (mode == SpatialMode::Off) return 0;
   auto err = [&](uint32_t n) { return int64_t(qf[size_t(n) * 3 + size_t(axis)]) - base(n); };
   int64_t mean_sum = 0, para_sum = 0;
@@ -121,6 +149,14 @@ inline int64_t spatial_correction(SpatialMode mode, const Traversal& t, uint32_t
   const uint32_t p_begin = t.para_offsets[pos], p_end = t.para_offsets[pos + 1];
   const int64_t para_count = int64_t(p_end - p_begin);
   if (mode == SpatialMode::Mean || para_count == 0) return nb_count ? detail::rounded_mean(mean_sum, nb_count) : 0;
+  if (mode == SpatialMode::Geometric) {
+    for (uint32_t k = p_begin; k < p_end; ++k) {
+      const int64_t ea = err(t.para[3 * size_t(k)]);
+      para_sum += kGeometricUnit * ea + weights[2 * size_t(k)] * (err(t.para[3 * size_t(k) + 1]) - ea) +
+                  weights[2 * size_t(k) + 1] * (err(t.para[3 * size_t(k) + 2]) - ea);
+    }
+    return detail::rounded_mean(para_sum, kGeometricUnit * para_count);
+  }
   for (uint32_t k = p_begin; k < p_end; ++k)
     para_sum += err(t.para[3 * size_t(k)]) + err(t.para[3 * size_t(k) + 1]) - err(t.para[3 * size_t(k) + 2]);
   if (mode == SpatialMode::Parallelogram) return detail::rounded_mean(para_sum, para_count);
@@ -129,14 +165,15 @@ inline int64_t spatial_correction(SpatialMode mode, const Traversal& t, uint32_t
 }
 
 // Predictions (grid units) of the three axes of traversal position `pos`: base(u, a) is
-// vertex u's base prediction on axis a, qf the frame's values decoded so far.
+// vertex u's base prediction on axis a, qf the frame's values decoded so far, weights[a]
+// the geometric_weights of axis a's geometry frame (null when no axis is Geometric).
 template <class Base>
 inline void vertex_prediction(const PredictorChoice* choice, const Traversal& t, uint32_t pos, const int32_t* qf,
-                              const Base& base, int64_t pred[3]) {
+                              const Base& base, int64_t pred[3], const int32_t* const* weights = nullptr) {
   const uint32_t v = t.order[pos];
   for (int a = 0; a < 3; ++a) {
     auto ba = [&](uint32_t u) { return base(u, a); };
-    pred[a] = ba(v) + spatial_correction(choice[a].spatial, t, pos, a, qf, ba);
+    pred[a] = ba(v) + spatial_correction(choice[a].spatial, t, pos, a, qf, ba, weights ? weights[a] : nullptr);
   }
 }
 

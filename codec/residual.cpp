@@ -13,7 +13,7 @@ namespace dcurve {
 namespace {
 
 constexpr uint8_t kFormatVersion = 2;
-// A plan entry byte: predictor kind in bits 0-3, spatial mode in bits 4-5.
+// A plan entry byte: predictor kind in bits 0-3, spatial mode in bits 4-6.
 constexpr int kSpatialShift = 4;
 
 // Context of a residual: how large the residuals around it already were. Neighbours in
@@ -70,6 +70,7 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
   std::vector<int64_t> base;
   std::vector<int8_t> res(stride * plan.order.size(), 0);
   const int8_t* previous = nullptr;  // residuals of the frame coded last
+  GeometricWeightsCache geometry;
   for (uint32_t f : plan.order) {
     FramePredictors& fp = plan.frames[f];
     const uint32_t K = uint32_t(fp.candidates.size());
@@ -104,8 +105,10 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
       const int64_t* centre = centres[slot].data();
       const int32_t* ref[3];
       const int8_t* source[3];
+      const int32_t* weights[3];
       for (int a = 0; a < 3; ++a) {
         const PredictorChoice& c = choice[a];
+        weights[a] = c.spatial == SpatialMode::Geometric ? geometry.get(trav, q, c.g) : nullptr;
         source[a] = has_reference(c.kind) ? &res[size_t(c.r0) * stride] : previous;
         ref[a] = q + size_t(c.r0) * stride;
         if (c.kind != PredictorKind::Motion || have_map[slot]) continue;
@@ -134,7 +137,7 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
         const uint32_t nb_begin = trav.nb_offsets[pos], nb_end = trav.nb_offsets[pos + 1];
         uint32_t axis_max = 0;
         int64_t preds[3];
-        vertex_prediction(choice, trav, pos, qf, base_of, preds);
+        vertex_prediction(choice, trav, pos, qf, base_of, preds, weights);
         for (int a = 0; a < 3; ++a) {
           const int64_t pred = preds[a];
           int nb_class = kNeighbourClasses - 1;
@@ -352,6 +355,7 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
         w.u8(uint8_t(uint8_t(c.kind) | uint8_t(c.spatial) << kSpatialShift));
         if (has_reference(c.kind)) write_ref(w, f, c.r0);
         if (c.kind == PredictorKind::Linear) write_ref(w, f, c.r1);
+        if (c.spatial == SpatialMode::Geometric) write_ref(w, f, c.g);
       }
   }
   StreamWriter coder;
@@ -402,6 +406,7 @@ bool read_header(const Model& model, const ResidualOptions& options, ByteReader&
         c.spatial = SpatialMode(spatial);
         if (has_reference(c.kind)) c.r0 = read_ref(r, f);
         if (c.kind == PredictorKind::Linear) c.r1 = read_ref(r, f);
+        if (c.spatial == SpatialMode::Geometric) c.g = read_ref(r, f);
         if (!r.ok || !predictor_usable(c, f, decoded, options))
           return fail(error, c.kind == PredictorKind::Model && r.ok
                                  ? "residual stream needs the motion model prediction, which was not supplied"

@@ -227,7 +227,7 @@ TEST(InfoCommand, DescribesTestVectorsAndRefusesDamage) {
   std::string out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "pde_segments.dcrv", &status);
   EXPECT_EQ(status, 0);
   for (const char* key : {"\"vertices\":6", "\"frames\":9", "\"faces\":4", "\"pde8\":12", "\"pde32\":3",
-                          "\"version\":\"2.0\"", "\"mode\":\"displacement\""})
+                          "\"version\":\"2.1\"", "\"mode\":\"displacement\""})
     EXPECT_NE(out.find(key), std::string::npos) << key << " in " << out;
   out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "sheet_traversal_faces.dcrv", &status);
   EXPECT_NE(out.find("\"face_layout\":\"traversal\""), std::string::npos) << out;

@@ -143,6 +143,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
   std::vector<int32_t> orig(stride), best_values;
   std::vector<std::pair<int, int64_t>> trial_res, best_res;  // (context, residual) of the cluster
   CostTable table;
+  GeometricWeightsCache geometry;
   for (uint32_t f : order) {
     int32_t* qf = q->data() + size_t(f) * stride;
     const float* input = frames[f].data();
@@ -154,7 +155,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
     for (const PredictorChoice& c : candidates_for(*q, V, f, decoded, options, with_references)) {
       if (c.kind != PredictorKind::Reference || po.kinds >> int(PredictorKind::Reference) & 1) pool.push_back(c);
       if (c.kind == PredictorKind::Reference && po.kinds >> int(PredictorKind::Motion) & 1)
-        pool.push_back({PredictorKind::Motion, c.r0, 0, c.spatial});
+        pool.push_back({PredictorKind::Motion, c.r0, 0, c.spatial, c.g});
     }
     if (pool.empty()) pool.push_back({PredictorKind::None, 0, 0, SpatialMode::Off});
     base.resize(pool.size() * stride);
@@ -206,6 +207,9 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
           MotionRow rows[3];
           int64_t centre[3][3];
           const int32_t* ref[3];
+          const int32_t* weights[3];
+          for (int a = 0; a < 3; ++a)
+            weights[a] = choice[a].spatial == SpatialMode::Geometric ? geometry.get(trav, q->data(), choice[a].g) : nullptr;
           const bool map_paid = std::find(paid[b].begin(), paid[b].end(), t) != paid[b].end();
           for (int a = 0; a < 3; ++a) {
             ref[a] = q->data() + size_t(choice[a].r0) * stride;
@@ -234,7 +238,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
             int32_t* qv = qf + size_t(v) * 3;
             std::copy(&orig[size_t(v) * 3], &orig[size_t(v) * 3] + 3, qv);
             int64_t pred[3];
-            vertex_prediction(choice, trav, pos, qf, base_of, pred);
+            vertex_prediction(choice, trav, pos, qf, base_of, pred, weights);
             if (po.snap) snap_vertex(model.residual, input + size_t(v) * 3, radius, po.distance_weight, pred, qv);
             uint8_t axis_max = 0;
             for (int a = 0; a < 3; ++a) {

@@ -33,8 +33,10 @@ constexpr int kPatience = int(std::size(kComponentCounts));
 // encode saved 29 KB net, 124,286 -> 94,943 bytes). On inputs of more than kCheapTrial
 // vertex-frames a full trial runs only when the estimated saving is at least
 // kTrialSavingFactor times the section's raw bytes, which bounds the encode time lost to
-// losing trials; smaller inputs try every estimated net saving.
-constexpr double kTrialSavingFactor = 1.5;
+// losing trials; smaller inputs try one when it is at least kCheapTrialSavingFactor times:
+// the sheet at 1e-3 (grid 4x) estimated 0.92x its section for K = 48, whose full trial
+// saved 6,689 bytes (78,888 -> 72,199).
+constexpr double kTrialSavingFactor = 1.5, kCheapTrialSavingFactor = 0.75;
 constexpr double kCheapTrial = double(1 << 18);
 // Above this many multiply-adds the F x F Gram matrix is not worth building automatically.
 constexpr double kMaxGramWork = 4e9;
@@ -177,7 +179,6 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   if (forced) counts.push_back(std::min(uint32_t(options.components), available));
   for (uint32_t K : kComponentCounts)
     if (!forced && K <= available) counts.push_back(K);
-  uint32_t best_count = 0;
   double best_net = -HUGE_VAL;
   int worse = 0;
   for (uint32_t K : counts) {
@@ -187,21 +188,28 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     if (!screened) break;  // larger counts cost more still
     if (candidates.back().net_bytes > best_net) {
       best_net = candidates.back().net_bytes;
-      best_count = K;
       worse = 0;
     } else {
       ++worse;
     }
   }
   // Other steps for the best count, unless even the coarsest could not pay: a coarser basis
-  // saves less, and its section shrinks by about the step ratio at most.
-  const auto best_it = std::max_element(candidates.begin(), candidates.end(),
-                                        [](const Candidate& a, const Candidate& b) { return a.net_bytes < b.net_bytes; });
+  // saves less, and its section shrinks by about the step ratio at most. When no count
+  // pays at the first step, the one that comes closest relative to its section: a coarser
+  // step may make it pay (the sheet at 1e-3, grid 4x: K = 48 at step 0.4).
+  auto by_net = [](const Candidate& a, const Candidate& b) { return a.net_bytes < b.net_bytes; };
+  auto by_ratio = [](const Candidate& a, const Candidate& b) {
+    return a.saved_bytes * b.section_bytes < b.saved_bytes * a.section_bytes;
+  };
+  auto best_it = std::max_element(candidates.begin(), candidates.end(), by_net);
+  if (best_it != candidates.end() && best_it->net_bytes <= 0)
+    best_it = std::max_element(candidates.begin(), candidates.end(), by_ratio);
   const bool refine = best_it != candidates.end() &&
                       best_it->saved_bytes > kFirstStep / kOtherSteps[std::size(kOtherSteps) - 1] * best_it->section_bytes;
+  const uint32_t refine_count = refine ? best_it->model.components : 0;
   for (double step : kOtherSteps) {
     bool screened = false;
-    if (refine && !try_candidate(best_count, step, &screened)) return false;
+    if (refine && !try_candidate(refine_count, step, &screened)) return false;
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.net_bytes > b.net_bytes; });
@@ -216,7 +224,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   Model best_model;
   for (const Candidate& c : candidates) {
     if (rep.trials >= options.max_trials) break;
-    const double factor = double(F) * model->meta.vertex_count <= kCheapTrial ? 1.0 : kTrialSavingFactor;
+    const double factor = double(F) * model->meta.vertex_count <= kCheapTrial ? kCheapTrialSavingFactor : kTrialSavingFactor;
     if (!forced && c.saved_bytes <= factor * c.section_bytes) continue;
     Model trial = *model;
     trial.low_rank = c.model;

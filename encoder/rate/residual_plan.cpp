@@ -197,8 +197,11 @@ std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint3
   std::vector<PredictorChoice> out;
   auto add = [&](PredictorKind kind, uint32_t r0, uint32_t r1) {
     if (!(po.kinds >> int(kind) & 1)) return;
-    for (SpatialMode s : {SpatialMode::Off, SpatialMode::Mean, SpatialMode::Parallelogram, SpatialMode::Blend}) {
-      const PredictorChoice c{kind, r0, r1, s};
+    for (uint8_t m = 0; m < kSpatialModeCount; ++m) {
+      const SpatialMode s = SpatialMode(m);
+      // Geometric weights come from the reference pose, or the nearest decoded frame.
+      const uint32_t g = has_reference(kind) ? r0 : below != none ? below : above;
+      const PredictorChoice c{kind, r0, r1, s, s == SpatialMode::Geometric ? g : 0};
       if (po.spatial_modes >> int(s) & 1 && predictor_usable(c, f, decoded, options)) out.push_back(c);
     }
   };
@@ -253,18 +256,21 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
   std::vector<uint8_t> contexts(stride), magnitude(stride);  // magnitude: by vertex, clamped
   std::vector<int32_t> scratch(stride), best_frame(stride);
   double total = 0;
+  GeometricWeightsCache geometry;
   for (uint32_t f : order) {
     int32_t* qf = q->data() + size_t(f) * stride;
     double best = HUGE_VAL;
     for (const PredictorChoice& c : candidates_for(*q, V, f, decoded, options, po)) {
       const PredictorChoice choice[3] = {c, c, c};
+      const int32_t* w = c.spatial == SpatialMode::Geometric ? geometry.get(trav, q->data(), c.g) : nullptr;
+      const int32_t* weights[3] = {w, w, w};
       for (int a = 0; a < 3; ++a) base_prediction(c, f, a, V, q->data(), options, &base[size_t(a) * V]);
       std::copy(qf, qf + stride, scratch.begin());
       for (uint32_t pos = 0; pos < V; ++pos) {
         const uint32_t v = trav.order[pos];
         int64_t pred[3];
         vertex_prediction(choice, trav, pos, scratch.data(),
-                          [&](uint32_t u, int a) { return base[size_t(a) * V + u]; }, pred);
+                          [&](uint32_t u, int a) { return base[size_t(a) * V + u]; }, pred, weights);
         int32_t* qv = &scratch[size_t(v) * 3];
         if (po.snap) snap_vertex(model.residual, &frames[f][size_t(v) * 3], radius, po.distance_weight, pred, qv);
         uint8_t axis_max = 0;

@@ -1,0 +1,186 @@
+// The Geometric spatial mode (codec/predictors.h, format_spec/residual.md): its weights
+// locate a vertex against its parallelogram's triangle, it predicts an affine motion of an
+// irregular mesh where Parallelogram cannot, and a payload naming an unusable geometry
+// frame is rejected.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "codec/predictors.h"
+#include "codec/residual.h"
+
+namespace dcurve {
+namespace {
+
+// A traversal of four vertices where vertex 3 has the one parallelogram (0, 1, 2).
+Traversal one_triangle() {
+  Traversal t;
+  t.order = {0, 1, 2, 3};
+  t.nb_offsets = {0, 0, 0, 0, 0};
+  t.para_offsets = {0, 0, 0, 0, 1};
+  t.para = {0, 1, 2};
+  return t;
+}
+
+TEST(GeometricWeights, LocateTheVertexAgainstItsTriangle) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> coord(-1.0, 1.0), weight(-2.0, 2.0);
+  const Traversal t = one_triangle();
+  int checked = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    // Scales from a few grid steps to beyond the 12 bits the weights are computed in.
+    const double scale = std::ldexp(1.0, 4 + trial % 26);
+    double p[3][3];
+    for (auto& row : p)
+      for (double& x : row) x = coord(rng) * scale;
+    const double alpha = weight(rng), beta = weight(rng);  // where v lies, before rounding
+    int32_t g[12];
+    for (int k = 0; k < 3; ++k) {
+      for (int u = 0; u < 3; ++u) g[u * 3 + k] = int32_t(std::lround(p[u][k]));
+      g[9 + k] = int32_t(std::lround(p[0][k] + alpha * (p[1][k] - p[0][k]) + beta * (p[2][k] - p[0][k])));
+    }
+    // The least-squares (alpha, beta) of the rounded coordinates, in binary64.
+    double d1[3], d2[3], x[3];
+    for (int k = 0; k < 3; ++k) {
+      d1[k] = double(g[3 + k]) - g[k];
+      d2[k] = double(g[6 + k]) - g[k];
+      x[k] = double(g[9 + k]) - g[k];
+    }
+    auto dot = [](const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+    const double g11 = dot(d1, d1), g12 = dot(d1, d2), g22 = dot(d2, d2), det = g11 * g22 - g12 * g12;
+    // Only well-shaped triangles (sin of the angle at a above 0.45, no edge under a
+    // quarter of the longest distance), as parallelograms of a mesh are: on thin or small
+    // ones the 12-bit cut below moves the solution more than the bound.
+    const double longest = std::max({g11, g22, dot(x, x)});
+    if (det < 0.2 * g11 * g22 || std::min(g11, g22) < longest / 16) continue;
+    const double a_ls = (g22 * dot(d1, x) - g12 * dot(d2, x)) / det;
+    const double b_ls = (g11 * dot(d2, x) - g12 * dot(d1, x)) / det;
+    const std::vector<int32_t> w = geometric_weights(t, g);
+    ASSERT_EQ(w.size(), 2u);
+    // The weights are computed from the coordinates cut to 12 bits (an error of one unit
+    // in 4096 of the largest; the triangle's shape can amplify it a few times), then
+    // rounded to 1/256 and clamped to [-4, 4].
+    if (std::fabs(a_ls) > 3.9 || std::fabs(b_ls) > 3.9) continue;
+    const double allowed = 0.5 + 256 * 12 * (std::fabs(a_ls) + std::fabs(b_ls) + 1) / 4096;
+    EXPECT_NEAR(w[0], 256 * a_ls, allowed) << "trial " << trial;
+    EXPECT_NEAR(w[1], 256 * b_ls, allowed) << "trial " << trial;
+    ++checked;
+  }
+  EXPECT_GT(checked, 200);
+  // A degenerate triangle falls back to the plain parallelogram.
+  const int32_t line[12] = {0, 0, 0, 10, 0, 0, 20, 0, 0, 5, 5, 0};
+  EXPECT_EQ(geometric_weights(t, line), (std::vector<int32_t>{256, -256}));
+  // Extreme coordinates stay in range (no overflow) and keep the weights clamped.
+  const int32_t far[12] = {INT32_MIN, INT32_MIN, 0, INT32_MAX, INT32_MIN, 0, INT32_MIN, INT32_MIN + 1, 0,
+                           INT32_MAX, INT32_MAX, 0};
+  for (int32_t x : geometric_weights(t, far)) {
+    EXPECT_GE(x, -kGeometricLimit);
+    EXPECT_LE(x, kGeometricLimit);
+  }
+}
+
+// A flat, irregular mesh (a jittered grid) and the same mesh moved by an affine map: the
+// displacement field is affine, so Geometric predicts it to rounding, Parallelogram only
+// where the mesh happens to be a parallelogram.
+struct AffineCase {
+  Model model;
+  std::vector<int32_t> q;  // 2 frames
+};
+
+AffineCase affine_case() {
+  constexpr uint32_t side = 12;
+  AffineCase c;
+  Model& m = c.model;
+  m.meta = {side * side, 2, 30.0, 1e-3, 1.0, ""};
+  for (uint32_t i = 0; i + 1 < side; ++i)
+    for (uint32_t j = 0; j + 1 < side; ++j) {
+      const uint32_t a = i * side + j, b = a + 1, d = a + side, e = d + 1;
+      m.faces.insert(m.faces.end(), {a, b, e, a, e, d});
+    }
+  m.residual.step = 1e-3;
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> jitter(-35, 35);
+  std::vector<int32_t> f0;
+  for (uint32_t i = 0; i < side; ++i)
+    for (uint32_t j = 0; j < side; ++j) f0.insert(f0.end(), {int32_t(100 * j) + jitter(rng), int32_t(100 * i) + jitter(rng), 0});
+  const double ang = 0.3, s = 1.2;
+  c.q = f0;
+  for (size_t v = 0; v < f0.size(); v += 3) {
+    const double x = f0[v], y = f0[v + 1];
+    c.q.push_back(int32_t(std::lround(s * (std::cos(ang) * x - std::sin(ang) * y) + 57)));
+    c.q.push_back(int32_t(std::lround(s * (std::sin(ang) * x + std::cos(ang) * y) - 31)));
+    c.q.push_back(int32_t(std::lround(0.25 * x - 0.5 * y)));
+  }
+  return c;
+}
+
+// Residuals of frame 1 predicted from frame 0 with the given spatial mode.
+std::vector<int64_t> frame1_residuals(const AffineCase& c, SpatialMode spatial) {
+  const PredictorChoice intra{PredictorKind::None, 0, 0, SpatialMode::Parallelogram, 0};
+  const PredictorChoice inter{PredictorKind::Reference, 0, 0, spatial, 0};
+  const PredictorPlan plan = uniform_plan({0, 1}, {intra, intra, intra, inter, inter, inter});
+  const std::vector<int64_t> all = residual_values(c.model, c.q, plan);
+  EXPECT_EQ(all.size(), c.q.size());
+  return std::vector<int64_t>(all.begin() + std::ptrdiff_t(all.size() / 2), all.end());
+}
+
+TEST(GeometricPrediction, AffineMotionOfAnIrregularMeshToRounding) {
+  const AffineCase c = affine_case();
+  int64_t geo_sum = 0, para_sum = 0, geo_max = 0, with_para = 0;
+  const std::vector<int64_t> geo = frame1_residuals(c, SpatialMode::Geometric);
+  const std::vector<int64_t> para = frame1_residuals(c, SpatialMode::Parallelogram);
+  ASSERT_EQ(geo.size(), para.size());
+  // Residuals come in traversal order; positions without a parallelogram fall back to
+  // Mean in both modes.
+  const Traversal t = build_traversal(c.model);
+  for (size_t i = 0; i < geo.size(); ++i) {
+    const size_t pos = i / 3;
+    if (t.para_offsets[pos] == t.para_offsets[pos + 1]) continue;
+    geo_sum += std::llabs(geo[i]);
+    para_sum += std::llabs(para[i]);
+    geo_max = std::max<int64_t>(geo_max, std::llabs(geo[i]));
+    ++with_para;
+  }
+  EXPECT_LE(geo_max, 3);
+  EXPECT_LT(geo_sum * 4, para_sum) << "geometric " << geo_sum << ", parallelogram " << para_sum;
+  EXPECT_GT(with_para, int64_t(geo.size() / 2));
+}
+
+TEST(GeometricPrediction, RoundTripsAndRejectsAnUnusableGeometryFrame) {
+  AffineCase c = affine_case();
+  const PredictorChoice intra{PredictorKind::None, 0, 0, SpatialMode::Parallelogram, 0};
+  const PredictorChoice inter{PredictorKind::Reference, 0, 0, SpatialMode::Geometric, 0};
+  PredictorPlan plan = uniform_plan({0, 1}, {intra, intra, intra, inter, inter, inter});
+  c.model.residual.payload = encode_residuals(c.model, c.q, &plan);
+  ASSERT_FALSE(c.model.residual.payload.empty());
+  std::vector<int32_t> back;
+  std::string err;
+  ASSERT_TRUE(decode_residuals(c.model, &back, &err)) << err;
+  EXPECT_EQ(back, c.q);
+  // The encoder refuses a geometry frame that is the frame itself.
+  PredictorPlan self = plan;
+  for (PredictorChoice& p : self.frames[1].candidates[0]) p.g = 1;
+  EXPECT_TRUE(encode_residuals(c.model, c.q, &self).empty());
+  // Frame 1's predictor is byte 0x41 (Reference | Geometric << 4), r0 = zigzag(-1) = 1,
+  // g = zigzag(-1) = 1: point g at frame 1 itself (0) or at frame 2, which does not exist (2).
+  const std::vector<uint8_t> good = c.model.residual.payload;
+  const uint8_t pattern[3] = {0x41, 0x01, 0x01};
+  auto at = std::search(good.begin(), good.end(), pattern, pattern + 3);
+  ASSERT_NE(at, good.end());
+  for (uint8_t bad : {uint8_t(0x00), uint8_t(0x02)}) {
+    c.model.residual.payload = good;
+    c.model.residual.payload[size_t(at - good.begin()) + 2] = bad;
+    EXPECT_FALSE(decode_residuals(c.model, &back, &err));
+    EXPECT_NE(err.find("unavailable frame"), std::string::npos) << err;
+  }
+  // Spatial mode 5 does not exist.
+  c.model.residual.payload = good;
+  c.model.residual.payload[size_t(at - good.begin())] = 0x51;
+  EXPECT_FALSE(decode_residuals(c.model, &back, &err));
+}
+
+}  // namespace
+}  // namespace dcurve
