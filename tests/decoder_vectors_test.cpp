@@ -89,6 +89,17 @@ std::vector<Vector> recipes() {
   model_only.residual = ResidualLayer{};
   v.push_back({"model_only", model_only, {}});
 
+  // Every frame after the first predicted from the one before with Geometric weights
+  // taken from that frame's shape (format 2.1).
+  Model geometric = testing::sheet_model(5, 6);
+  geometric.faces = traversal_order(geometric.faces);
+  std::vector<PredictorChoice> choices(3, PredictorChoice{PredictorKind::None, 0, 0, SpatialMode::Parallelogram, 0});
+  for (uint32_t f = 1; f < 6; ++f)
+    choices.insert(choices.end(), 3, PredictorChoice{PredictorKind::Reference, f - 1, 0, SpatialMode::Geometric, f - 1});
+  const PredictorPlan geometric_plan = uniform_plan({0, 1, 2, 3, 4, 5}, choices);
+  geometric.residual.payload = encode_residuals(geometric, testing::grid(geometric.meta.vertex_count, 6), &geometric_plan);
+  v.push_back({"geometric", geometric, {}});
+
   Model low_rank_sheet = testing::sheet_model(5, 6);
   low_rank_sheet.faces = traversal_order(low_rank_sheet.faces);
   v.push_back({"low_rank", with_low_rank(low_rank_sheet), {}});

@@ -16,9 +16,10 @@
 namespace dcurve::testing {
 
 // Grid value of frame f, vertex v, axis a: smooth in f with a vertex- and axis-dependent
-// offset, negative values included.
+// offset, negative values included. The (v * v * (a + 2)) % 11 term keeps the vertices off
+// one line, so Geometric weights (format_spec/residual.md) are not all degenerate.
 inline int32_t grid_value(uint32_t f, uint32_t v, int a) {
-  return int32_t(v * 7 + a * 3) - 9 + int32_t(f * f) * (a + 1) - int32_t(f * v % 5);
+  return int32_t(v * 7 + a * 3) - 9 + int32_t(f * f) * (a + 1) - int32_t(f * v % 5) + int32_t(v * v * uint32_t(a + 2) % 11);
 }
 
 inline std::vector<int32_t> grid(uint32_t V, uint32_t F) {

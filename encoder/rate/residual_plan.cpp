@@ -5,6 +5,7 @@
 #include "encoder/rate/plan_steps.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -68,36 +69,63 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, doub
     double d2;
     int64_t k;
   };
-  thread_local std::vector<Option> options[3];
+  // At most one option for "equal to pred" and one per exponent band.
+  std::array<Option, 66> options[3];
+  size_t count[3] = {0, 0, 0};
   int64_t best[3];
   for (int a = 0; a < 3; ++a) {
-    std::vector<Option>& o = options[a];
-    o.clear();
-    const int64_t lo = int64_t(std::floor((double(x[a]) - radius - layer.origin[a]) / layer.step));
-    const int64_t hi = int64_t(std::ceil((double(x[a]) + radius - layer.origin[a]) / layer.step));
-    for (int64_t k = lo; k <= hi; ++k) {
-      const double d = double(grid_to_model(layer, a, k)) - double(x[a]);
-      if (d * d > r2) continue;
-      const int bits = residual_cost(k - pred[a]);
-      auto same = std::find_if(o.begin(), o.end(), [&](const Option& e) { return e.bits == bits; });
-      if (same == o.end())
-        o.push_back({bits, d * d, k});
-      else if (d * d < same->d2)
-        *same = {bits, d * d, k};
-    }
-    std::sort(o.begin(), o.end(), [](const Option& u, const Option& v) { return u.bits < v.bits; });
+    const double xa = x[a];
+    auto d2_of = [&](int64_t k) {
+      const double d = double(grid_to_model(layer, a, k)) - xa;
+      return d * d;
+    };
+    // The admissible values form one run [lo, hi]: the decoded position is monotonic in k.
+    int64_t lo = int64_t(std::floor((xa - radius - layer.origin[a]) / layer.step));
+    int64_t hi = int64_t(std::ceil((xa + radius - layer.origin[a]) / layer.step));
+    while (lo <= hi && d2_of(lo) > r2) ++lo;
+    while (hi >= lo && d2_of(hi) > r2) --hi;
     best[a] = qv[a];
+    if (lo > hi) continue;
+    const int64_t nearest = std::clamp<int64_t>(std::llround((xa - layer.origin[a]) / layer.step), lo, hi);
+    // The value of [l, h] nearest the input, the lowest of equally near ones (|d| falls,
+    // then rises, with k; rounding to float can make runs of equal distances).
+    auto nearest_in = [&](int64_t l, int64_t h, int bits) {
+      int64_t k = std::clamp(nearest, l, h);
+      double d2 = d2_of(k);
+      for (double e; k > l && (e = d2_of(k - 1)) <= d2; --k) d2 = e;
+      for (double e; k < h && (e = d2_of(k + 1)) < d2; ++k) d2 = e;
+      return Option{bits, d2, k};
+    };
+    const int64_t p = pred[a];
+    Option* o = options[a].data();
+    if (lo <= p && p <= hi) o[count[a]++] = {0, d2_of(p), p};
+    // Band e: |k - p| in [2^e, 2^(e+1) - 1], all costing residual_cost = 2 + 2e. The side
+    // below p goes first, so that of equally near values the lower wins.
+    for (int e = 0; e < 62 && (p + (int64_t(1) << e) <= hi || p - (int64_t(1) << e) >= lo); ++e) {
+      const int64_t m1 = int64_t(1) << e, m2 = (int64_t(2) << e) - 1;
+      Option band{-1, 0, 0};
+      for (const auto& [l, h] : {std::pair(std::max(lo, p - m2), std::min(hi, p - m1)),
+                                 std::pair(std::max(lo, p + m1), std::min(hi, p + m2))}) {
+        if (l > h) continue;
+        const Option c = nearest_in(l, h, 2 + 2 * e);
+        if (band.bits < 0 || c.d2 < band.d2) band = c;
+      }
+      if (band.bits >= 0) o[count[a]++] = band;
+    }
   }
   double best_d2 = distance2(layer, x, best), best_score = score(best, best_d2);
   // Options come cheapest first, and scores only grow with bits (distance_weight >= 0):
   // once a prefix is dearer than the best point the rest of that list cannot win.
-  for (const Option& ox : options[0]) {
+  for (size_t i = 0; i < count[0]; ++i) {
+    const Option& ox = options[0][i];
     if (ox.bits > best_score) break;
-    for (const Option& oy : options[1]) {
+    for (size_t j = 0; j < count[1]; ++j) {
+      const Option& oy = options[1][j];
       if (ox.bits + oy.bits > best_score) break;
       const double dxy = ox.d2 + oy.d2;
       if (dxy > r2) continue;
-      for (const Option& oz : options[2]) {
+      for (size_t k = 0; k < count[2]; ++k) {
+        const Option& oz = options[2][k];
         const int bits = ox.bits + oy.bits + oz.bits;
         if (bits > best_score) break;
         const double d2 = dxy + oz.d2;
