@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include "codec/int_coder.h"
+#include "codec/range_coder.h"
+
 namespace dcurve {
 namespace {
 // Coefficients follow smooth trajectories: coefficient i (frame-major, K per frame) is
@@ -11,16 +14,45 @@ int64_t predicted_coeff(const std::vector<int32_t>& c, size_t i, size_t K) {
   if (i >= 2 * K) return 2 * int64_t(c[i - K]) - int64_t(c[i - 2 * K]);
   return i >= K ? int64_t(c[i - K]) : 0;
 }
+
+// Bit 7 of the component byte: the differences are range-coded (format 2.1), not svarints.
+constexpr uint8_t kRangeCoded = 0x80;
+
+// A range-coded stream may hold many values per byte; a decoder allocates F * K values only
+// when F * K <= 4096 + 64 * stream bytes (the writer keeps svarints beyond that).
+bool range_count_plausible(uint64_t count, uint64_t stream_bytes) { return count <= 4096 + 64 * stream_bytes; }
+
+std::vector<uint8_t> range_coded_differences(const LowRankModel& lr) {
+  RangeEncoder enc;
+  AdaptiveIntCoder coder(1, 1);
+  for (size_t i = 0; i < lr.coeffs.size(); ++i)
+    coder.encode(enc, 0, 0, int64_t(lr.coeffs[i]) - predicted_coeff(lr.coeffs, i, lr.components));
+  return enc.finish();
+}
 }  // namespace
 
 std::vector<uint8_t> low_rank_bytes(const Model& m) {
   const LowRankModel& lr = m.low_rank;
+  // Svarints, or the adaptive range coder when that is smaller: the differences of one
+  // file have similar magnitudes, which a varint's fixed 7-bit groups do not exploit.
+  ByteWriter varints;
+  for (size_t i = 0; i < lr.coeffs.size(); ++i)
+    varints.varint(zigzag_encode(int64_t(lr.coeffs[i]) - predicted_coeff(lr.coeffs, i, lr.components)));
+  const std::vector<uint8_t> stream = range_coded_differences(lr);
+  ByteWriter sized;
+  sized.varint(stream.size());
+  const bool ranged = range_count_plausible(lr.coeffs.size(), stream.size()) &&
+                      sized.size() + stream.size() < varints.size();
   ByteWriter w;
-  w.u8(uint8_t(lr.components));
+  w.u8(uint8_t(lr.components | (ranged ? kRangeCoded : 0)));
   w.u8(uint8_t(lr.shift));
   w.u8(uint8_t(lr.mean_shift));
-  for (size_t i = 0; i < lr.coeffs.size(); ++i)
-    w.varint(zigzag_encode(int64_t(lr.coeffs[i]) - predicted_coeff(lr.coeffs, i, lr.components)));
+  if (ranged) {
+    w.varint(stream.size());
+    w.bytes(stream.data(), stream.size());
+  } else {
+    w.bytes(varints.data().data(), varints.size());
+  }
   w.varint(lr.basis_payload.size());
   w.bytes(lr.basis_payload.data(), lr.basis_payload.size());
   return std::move(w.data());
@@ -28,22 +60,37 @@ std::vector<uint8_t> low_rank_bytes(const Model& m) {
 
 bool parse_low_rank(ByteReader& r, Model* m) {
   LowRankModel& lr = m->low_rank;
-  lr.components = r.u8();
+  const uint8_t first = r.u8();
+  const bool ranged = first & kRangeCoded;
+  lr.components = first & ~kRangeCoded;
   lr.shift = r.u8();
   lr.mean_shift = r.u8();
   if (!r.ok || lr.components == 0 || lr.components > kMaxLowRankComponents || lr.shift > kMaxLowRankShift ||
       lr.mean_shift > lr.shift)
     return false;
   const uint64_t count = uint64_t(m->meta.frame_count) * lr.components;
-  if (count > r.remaining()) return false;  // >= 1 byte per coefficient
-  lr.coeffs.resize(size_t(count));
   const size_t K = lr.components;
-  for (size_t i = 0; i < lr.coeffs.size(); ++i) {
-    int64_t c = 0;
-    if (!add_zigzag_delta(predicted_coeff(lr.coeffs, i, K), r.varint(), &c) || c < -kMaxLowRankCoeff ||
-        c > kMaxLowRankCoeff)
-      return false;
+  auto store = [&](size_t i, int64_t c) {
+    if (c < -kMaxLowRankCoeff || c > kMaxLowRankCoeff) return false;
     lr.coeffs[i] = int32_t(c);
+    return true;
+  };
+  if (ranged) {
+    const uint64_t stream_size = r.varint();
+    if (!r.ok || stream_size > r.remaining() || !range_count_plausible(count, stream_size)) return false;
+    RangeDecoder dec(r.take(size_t(stream_size)), size_t(stream_size));
+    AdaptiveIntCoder coder(1, 1);
+    lr.coeffs.resize(size_t(count));
+    for (size_t i = 0; i < lr.coeffs.size(); ++i)
+      if (!store(i, predicted_coeff(lr.coeffs, i, K) + coder.decode(dec, 0, 0))) return false;
+    if (!dec.at_clean_end()) return false;
+  } else {
+    if (count > r.remaining()) return false;  // >= 1 byte per coefficient
+    lr.coeffs.resize(size_t(count));
+    for (size_t i = 0; i < lr.coeffs.size(); ++i) {
+      int64_t c = 0;
+      if (!add_zigzag_delta(predicted_coeff(lr.coeffs, i, K), r.varint(), &c) || !store(i, c)) return false;
+    }
   }
   const uint64_t n = r.varint();
   const uint8_t* p = r.ok && n <= r.remaining() ? r.take(size_t(n)) : nullptr;

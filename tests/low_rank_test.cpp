@@ -7,7 +7,9 @@
 #include <random>
 
 #include "codec/container.h"
+#include "codec/int_coder.h"
 #include "codec/low_rank.h"
+#include "codec/range_coder.h"
 #include "codec/residual.h"
 #include "codec/validate.h"
 #include "container_bytes.h"
@@ -200,6 +202,68 @@ TEST(LowRank, DamagedSectionIsRejected) {
   }
 }
 
+// The coefficient differences as svarints (2.0) or range-coded (2.1) decode to the same
+// frames; a range-coded stream that does not end exactly, or claims more values than its
+// bytes can hold, is rejected.
+TEST(LowRank, CoefficientsDecodeTheSameInBothLayouts) {
+  const Animation anim = bending_sheet(10, 6, 16);
+  EncodeReport rep;
+  const std::vector<uint8_t> bytes = encode(anim, 2, &rep);
+  Model m;
+  std::string err;
+  ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &m, &err)) << err;
+  const LowRankModel& lr = m.low_rank;
+  ASSERT_EQ(lr.components, 2u);
+  // The differences to linear extrapolation, written here independently of the codec.
+  std::vector<int64_t> diffs;
+  const size_t K = lr.components;
+  for (size_t i = 0; i < lr.coeffs.size(); ++i) {
+    const int64_t p = i >= 2 * K ? 2 * int64_t(lr.coeffs[i - K]) - lr.coeffs[i - 2 * K] : i >= K ? lr.coeffs[i - K] : 0;
+    diffs.push_back(lr.coeffs[i] - p);
+  }
+  auto payload = [&](bool ranged, const std::vector<uint8_t>& extra) {
+    ByteWriter w;
+    w.u8(uint8_t(K | (ranged ? 0x80 : 0)));
+    w.u8(uint8_t(lr.shift));
+    w.u8(uint8_t(lr.mean_shift));
+    if (ranged) {
+      RangeEncoder enc;
+      AdaptiveIntCoder coder(1, 1);
+      for (int64_t d : diffs) coder.encode(enc, 0, 0, d);
+      std::vector<uint8_t> stream = enc.finish();
+      stream.insert(stream.end(), extra.begin(), extra.end());
+      w.varint(stream.size());
+      w.bytes(stream.data(), stream.size());
+    } else {
+      for (int64_t d : diffs) w.varint(zigzag_encode(d));
+    }
+    w.varint(lr.basis_payload.size());
+    w.bytes(lr.basis_payload.data(), lr.basis_payload.size());
+    return with_low_rank_payload(bytes, w.data());
+  };
+  auto original = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+  ASSERT_TRUE(original) << err;
+  std::vector<float> a(size_t(anim.vertex_count) * 3), b(a.size());
+  for (bool ranged : {false, true}) {
+    const std::vector<uint8_t> file = payload(ranged, {});
+    auto dec = Decoder::open_memory(file.data(), file.size(), &err);
+    ASSERT_TRUE(dec) << err << (ranged ? " (range-coded)" : " (svarints)");
+    for (uint32_t f = 0; f < dec->frame_count(); ++f) {
+      dec->evaluate_frame(f, a.data());
+      original->evaluate_frame(f, b.data());
+      ASSERT_EQ(a, b) << "frame " << f;
+    }
+  }
+  const std::vector<uint8_t> trailing = payload(true, {0});
+  EXPECT_FALSE(read_container(trailing.data(), trailing.size(), &m, &err)) << "a stream with a byte left over";
+  // A million coefficients from a one-byte stream: rejected before anything is allocated.
+  Model huge;
+  huge.meta.frame_count = 1000000;
+  const uint8_t tiny[] = {0x81, 4, 0, 1, 0, 0};
+  ByteReader r(tiny, sizeof tiny);
+  EXPECT_FALSE(parse_low_rank(r, &huge));
+}
+
 TEST(LowRank, AbsurdFieldsAreRejected) {
   const Animation anim = bending_sheet(10, 6, 16);
   EncodeReport rep;
@@ -223,13 +287,15 @@ TEST(LowRank, AbsurdFieldsAreRejected) {
   p = raw;
   p[2] = uint8_t(p[1] + 1);
   rejected(p, "mean shift above shift");
-  // A coefficient far outside +-2^24: the first one, written as a 5-byte varint.
-  p = {raw[0], raw[1], raw[2], 0x80, 0x80, 0x80, 0x80, 0x01};
+  // A coefficient far outside +-2^24: the first one, written as a 5-byte varint (svarint
+  // layout: bit 7 of the first byte clear).
+  const uint8_t K = raw[0] & 0x7f;
+  p = {K, raw[1], raw[2], 0x80, 0x80, 0x80, 0x80, 0x01};
   rejected(p, "coefficient out of range");
   // More coefficients than bytes, and a basis payload longer than the section.
   rejected({64, 10, 0, 0, 0}, "counts beyond the payload");
-  p = {raw[0], raw[1], raw[2]};
-  for (size_t i = 0; i < size_t(raw[0]) * anim.frames.size(); ++i) p.push_back(0);
+  p = {K, raw[1], raw[2]};
+  for (size_t i = 0; i < size_t(K) * anim.frames.size(); ++i) p.push_back(0);
   p.insert(p.end(), {0xff, 0xff, 0xff, 0xff, 0x0f});
   rejected(p, "basis payload size");
   // An unknown reader must not skip it: the REQUIRED flag is set.
