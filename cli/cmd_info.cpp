@@ -38,7 +38,7 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
   const uint64_t connectivity = connectivity_bytes(sections);
   int face_layout = -1;
   for (const auto& s : sections) {
-    js.push_back({{"tag", s.tag}, {"offset", s.offset}, {"required", s.required}, {"compressed", s.compressed},
+    js.push_back({{"tag", s.tag}, {"offset", s.offset}, {"header_bytes", s.header_bytes}, {"required", s.required}, {"compressed", s.compressed},
                   {"stored_bytes", s.stored_bytes}, {"raw_bytes", s.raw_bytes}});
     if (s.tag == "FACE") face_layout = s.face_layout;
   }

@@ -22,9 +22,15 @@ constexpr size_t kHeaderBytes = kContainerHeaderBytes;
 constexpr uint16_t kSectionRequired = 1;
 constexpr uint16_t kSectionZstd = 2;
 constexpr uint16_t kSectionKnownFlags = kSectionRequired | kSectionZstd;
-// File flags: the low 16 bits name features a reader must understand (none in 1.0), the
-// high 16 bits are hints a reader may ignore.
+// File flags: the low 16 bits name features a reader must understand, the high 16 bits
+// are hints a reader may ignore. Bit 0 (2.1): compact section headers, varint sizes
+// instead of 28 fixed bytes (about 95 bytes less on a six-section file: 4 % of the
+// cantilever's).
 constexpr uint32_t kFileRequiredFlagsMask = 0xffffu;
+constexpr uint32_t kFileCompactSections = 1;
+constexpr uint32_t kFileKnownRequiredFlags = kFileCompactSections;
+// Smallest compact section header: tag, flags, a one-byte size, CRC.
+constexpr size_t kCompactSectionHeaderMin = 4 + 1 + 1 + 4;
 // A decompressed section may be at most this many times its stored size (plus a floor):
 // the bound that keeps a hostile file from asking for unbounded memory.
 constexpr uint64_t kMaxExpansion = 4096;
@@ -86,19 +92,20 @@ std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteO
   return best;
 }
 
+// A compact section header (file flag kFileCompactSections): tag, u8 flags, varint stored
+// size, varint raw size only when compressed, CRC.
 void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
                  int level) {
   bool compressed = false;
   std::vector<uint8_t> stored = stored_form(raw, level, &compressed);
   const size_t header_at = out.size();
   out.u32(tag);
-  out.u16(uint16_t((required ? kSectionRequired : 0) | (compressed ? kSectionZstd : 0)));
-  out.u16(0);
-  out.u64(stored.size());
-  out.u64(raw.size());
+  out.u8(uint8_t((required ? kSectionRequired : 0) | (compressed ? kSectionZstd : 0)));
+  out.varint(stored.size());
+  if (compressed) out.varint(raw.size());
   // The checksum covers the section header too: a flipped tag or flag must not turn a
   // section into an unknown optional one that a reader would silently skip.
-  uint32_t crc = crc32c(out.data().data() + header_at, kSectionHeaderBytes - 4);
+  uint32_t crc = crc32c(out.data().data() + header_at, out.size() - header_at);
   out.u32(crc32c(stored.data(), stored.size(), crc));
   out.bytes(stored.data(), stored.size());
 }
@@ -268,7 +275,7 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   out.bytes(kMagic, 4);
   out.u16(kFormatVersionMajor);
   out.u16(kFormatVersionMinor);
-  out.u32(0);  // file flags
+  out.u32(kFileCompactSections);
   out.u32(uint32_t(sections.size()));
   out.u32(crc32c(out.data().data(), kHeaderBytes - 4));
   for (const auto& [tag, raw] : sections) {
@@ -311,7 +318,7 @@ uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptio
 uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections) {
   uint64_t bytes = 0;
   for (const SectionInfo& s : sections)
-    if (s.tag == "FACE") bytes += s.stored_bytes + kSectionHeaderBytes;
+    if (s.tag == "FACE") bytes += s.stored_bytes + s.header_bytes;
   return bytes;
 }
 
@@ -330,8 +337,11 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
   if (!r.ok) return fail(error, "truncated header (" + std::to_string(size) + " bytes)");
   if (crc != crc32c(data, kHeaderBytes - 4) && kVerifyChecksums) return fail(error, "header checksum mismatch");
   if (major != kFormatVersionMajor) return fail(error, "unsupported format version " + std::to_string(major));
-  if (file_flags & kFileRequiredFlagsMask) return fail(error, "file requires features this decoder does not know");
-  if (uint64_t(count) * kSectionHeaderBytes > r.remaining()) return fail(error, "section count exceeds file size");
+  if (file_flags & kFileRequiredFlagsMask & ~kFileKnownRequiredFlags)
+    return fail(error, "file requires features this decoder does not know");
+  const bool compact = file_flags & kFileCompactSections;
+  if (uint64_t(count) * (compact ? kCompactSectionHeaderMin : kSectionHeaderBytes) > r.remaining())
+    return fail(error, "section count exceeds file size");
 
   constexpr int kKnown = 6;
   bool seen[kKnown] = {false, false, false, false, false, false};
@@ -340,21 +350,31 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
   for (uint32_t i = 0; i < count; ++i) {
     const size_t header_at = r.position();
     uint32_t tag = r.u32();
-    uint16_t flags = r.u16();
-    r.u16();  // reserved
-    uint64_t stored = r.u64();
-    uint64_t raw_size = r.u64();
+    uint16_t flags = 0;
+    uint64_t stored = 0, raw_size = 0;
+    if (compact) {
+      flags = r.u8();
+      stored = r.varint();
+      raw_size = flags & kSectionZstd ? r.varint() : stored;
+    } else {
+      flags = r.u16();
+      r.u16();  // reserved
+      stored = r.u64();
+      raw_size = r.u64();
+    }
+    const size_t crc_at = r.position();
     uint32_t section_crc = r.u32();
     std::string name = tag_name(tag);
     if (!r.ok) return fail(error, "truncated section header");
     if (stored > r.remaining()) return fail(error, "section " + name + " is truncated");
     const uint8_t* p = r.take(size_t(stored));
-    uint32_t crc_head = crc32c(data + header_at, kSectionHeaderBytes - 4);
+    uint32_t crc_head = crc32c(data + header_at, crc_at - header_at);
     if (crc32c(p, size_t(stored), crc_head) != section_crc && kVerifyChecksums)
       return fail(error, "section " + name + " checksum mismatch");
     if (flags & ~kSectionKnownFlags) return fail(error, "section " + name + " has unknown flags");
     if (infos)
-      infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), header_at, stored, raw_size, -1});
+      infos->push_back({name, bool(flags & kSectionRequired), bool(flags & kSectionZstd), header_at,
+                        crc_at + 4 - header_at, stored, raw_size, -1});
 
     int known = -1;
     for (int k = 0; k < kKnown; ++k) if (order[k] == tag) known = k;

@@ -35,7 +35,8 @@ struct SectionInfo {
   bool required = false;
   bool compressed = false;
   uint64_t offset = 0;        // file offset of the section header
-  uint64_t stored_bytes = 0;  // bytes in the file (after the 28-byte section header)
+  uint64_t header_bytes = 0;  // the section header's size: 28, or 10..26 when compact
+  uint64_t stored_bytes = 0;  // bytes in the file after the section header
   uint64_t raw_bytes = 0;     // bytes after decompression
   int face_layout = -1;       // FACE only: 0 exact, 1 traversal, 2 compact (codec/faces.h)
 };
@@ -47,7 +48,7 @@ struct ContainerHeader {
   uint32_t section_count = 0;
 };
 constexpr size_t kContainerHeaderBytes = 20;
-constexpr size_t kSectionHeaderBytes = 28;
+constexpr size_t kSectionHeaderBytes = 28;  // the wide (2.0) layout; compact ones are smaller
 
 // Reads the header fields without checking anything else; false when size < 20 or the
 // magic is wrong. For tools that describe a file that read_container already accepted.

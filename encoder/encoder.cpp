@@ -269,7 +269,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   rep.low_rank_components = m.low_rank.components;
   rep.grid_refinement = grid_refinement(m.residual.step, opt.tolerance * m.meta.diag);
   for (const SectionInfo& s : sections) {
-    if (s.tag == "LRNK") rep.low_rank_bytes = s.stored_bytes + kSectionHeaderBytes;
+    if (s.tag == "LRNK") rep.low_rank_bytes = s.stored_bytes + s.header_bytes;
     if (s.tag == "SEGS" && !m.segments.empty()) rep.model_bytes = s.raw_bytes;
   }
   rep.motion_bytes = rep.bytes - rep.connectivity_bytes;

@@ -20,9 +20,11 @@ struct RawSection {
 
 struct RawFile {
   uint16_t major = 0, minor = 0;
-  uint32_t flags = 0;
+  uint32_t flags = 0;  // bit 0: compact section headers
   std::vector<RawSection> sections;
 };
+
+constexpr uint32_t kCompactSections = 1;
 
 inline RawFile split_file(const std::vector<uint8_t>& bytes) {
   RawFile f;
@@ -38,10 +40,17 @@ inline RawFile split_file(const std::vector<uint8_t>& bytes) {
     const uint8_t* tag = r.take(4);
     if (!tag) break;
     s.tag.assign(reinterpret_cast<const char*>(tag), 4);
-    s.flags = r.u16();
-    r.u16();
-    uint64_t stored = r.u64();
-    s.raw_size = r.u64();
+    uint64_t stored = 0;
+    if (f.flags & kCompactSections) {
+      s.flags = r.u8();
+      stored = r.varint();
+      s.raw_size = s.flags & 2 ? r.varint() : stored;
+    } else {
+      s.flags = r.u16();
+      r.u16();
+      stored = r.u64();
+      s.raw_size = r.u64();
+    }
     r.u32();
     const uint8_t* p = r.take(size_t(stored));
     if (p) s.stored.assign(p, p + stored);
@@ -61,11 +70,17 @@ inline std::vector<uint8_t> assemble(const RawFile& f) {
   for (const RawSection& s : f.sections) {
     size_t at = w.size();
     w.bytes(s.tag.data(), 4);
-    w.u16(s.flags);
-    w.u16(0);
-    w.u64(s.stored.size());
-    w.u64(s.raw_size);
-    w.u32(crc32c(s.stored.data(), s.stored.size(), crc32c(w.data().data() + at, 24)));
+    if (f.flags & kCompactSections) {
+      w.u8(uint8_t(s.flags));
+      w.varint(s.stored.size());
+      if (s.flags & 2) w.varint(s.raw_size);
+    } else {
+      w.u16(s.flags);
+      w.u16(0);
+      w.u64(s.stored.size());
+      w.u64(s.raw_size);
+    }
+    w.u32(crc32c(s.stored.data(), s.stored.size(), crc32c(w.data().data() + at, w.size() - at)));
     w.bytes(s.stored.data(), s.stored.size());
   }
   return std::move(w.data());
