@@ -61,6 +61,17 @@ std::vector<uint8_t> encode(const Animation& anim, int low_rank, EncodeReport* r
   return bytes;
 }
 
+// encode(anim, K, ...) read back: the model the file holds, with K components.
+Model encoded_model(const Animation& anim, int K, std::vector<uint8_t>* bytes) {
+  EncodeReport rep;
+  *bytes = encode(anim, K, &rep);
+  Model m;
+  std::string err;
+  EXPECT_TRUE(read_container(bytes->data(), bytes->size(), &m, &err)) << err;
+  EXPECT_EQ(m.low_rank.components, uint32_t(K));
+  return m;
+}
+
 // Largest vertex error of the decoded file over all frames, as a fraction of L.
 double decoded_max_error(const std::vector<uint8_t>& bytes, const Animation& anim) {
   std::string err;
@@ -146,12 +157,10 @@ TEST(LowRank, BuiltinSceneWithinToleranceEveryFrame) {
 
 TEST(LowRank, PredictionIsTheSameOnEveryPath) {
   const Animation anim = bending_sheet(12, 8, 24);
-  EncodeReport rep;
-  const std::vector<uint8_t> bytes = encode(anim, 3, &rep);
-  Model m;
-  std::string err;
-  ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &m, &err)) << err;
+  std::vector<uint8_t> bytes;
+  Model m = encoded_model(anim, 3, &bytes);
   ASSERT_EQ(m.low_rank.components, 3u);
+  std::string err;
   std::vector<int32_t> p1, p2, p3;
   ASSERT_TRUE(model_grid_prediction(m, UINT64_MAX, &p1, &err)) << err;
   ASSERT_TRUE(model_grid_prediction(m, UINT64_MAX, &p2, &err)) << err;
@@ -207,13 +216,11 @@ TEST(LowRank, DamagedSectionIsRejected) {
 // bytes can hold, is rejected.
 TEST(LowRank, CoefficientsDecodeTheSameInBothLayouts) {
   const Animation anim = bending_sheet(10, 6, 16);
-  EncodeReport rep;
-  const std::vector<uint8_t> bytes = encode(anim, 2, &rep);
-  Model m;
-  std::string err;
-  ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &m, &err)) << err;
-  const LowRankModel& lr = m.low_rank;
+  std::vector<uint8_t> bytes;
+  Model m = encoded_model(anim, 2, &bytes);
+  const LowRankModel lr = m.low_rank;
   ASSERT_EQ(lr.components, 2u);
+  std::string err;
   // The differences to linear extrapolation, written here independently of the codec.
   std::vector<int64_t> diffs;
   const size_t K = lr.components;
