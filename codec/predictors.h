@@ -128,8 +128,9 @@ class GeometricWeightsCache {
   const int32_t* get(const Traversal& t, const int32_t* q, uint32_t g);
 
  private:
-  // A frame offers at most 16 candidates; the encoder's pools draw on fewer frames.
-  static constexpr size_t kCapacity = 16;
+  // A frame names at most 8 geometry frames (kMaxGeometryFrames, codec/residual.h), so a
+  // walk computes each frame's tables once: decoding stays linear however clusters switch.
+  static constexpr size_t kCapacity = 8;
   std::vector<std::pair<uint32_t, std::vector<int32_t>>> entries_;  // most recent last
 };
 

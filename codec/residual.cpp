@@ -293,6 +293,15 @@ PredictorPlan default_predictor_plan(uint32_t frame_count) {
   return uniform_plan(order, choices);
 }
 
+bool geometry_frames_within_bound(const FramePredictors& fp) {
+  std::vector<uint32_t> frames;
+  for (const auto& candidate : fp.candidates)
+    for (const PredictorChoice& c : candidate)
+      if (c.spatial == SpatialMode::Geometric && std::find(frames.begin(), frames.end(), c.g) == frames.end())
+        frames.push_back(c.g);
+  return frames.size() <= kMaxGeometryFrames;
+}
+
 bool plan_is_valid(const PredictorPlan& plan, uint32_t F, uint32_t V, const ResidualOptions& options) {
   if (plan.order.size() != F || plan.frames.size() != F || plan.cluster_size == 0 || plan.motion_block == 0)
     return false;
@@ -302,6 +311,7 @@ bool plan_is_valid(const PredictorPlan& plan, uint32_t F, uint32_t V, const Resi
     if (f >= F || decoded[f]) return false;
     const FramePredictors& fp = plan.frames[f];
     if (fp.candidates.empty() || fp.candidates.size() > kMaxCandidates) return false;
+    if (!geometry_frames_within_bound(fp)) return false;
     if (!fp.cluster_candidate.empty() && fp.cluster_candidate.size() != clusters) return false;
     for (uint8_t j : fp.cluster_candidate)
       if (j >= fp.candidates.size()) return false;
@@ -412,6 +422,8 @@ bool read_header(const Model& model, const ResidualOptions& options, ByteReader&
                                  ? "residual stream needs the motion model prediction, which was not supplied"
                                  : "residual predictor table refers to an unavailable frame");
       }
+    if (!geometry_frames_within_bound(plan->frames[f]))
+      return fail(error, "residual frame names more than " + std::to_string(kMaxGeometryFrames) + " geometry frames");
     decoded[f] = 1;
   }
   return true;

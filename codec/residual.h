@@ -28,6 +28,13 @@ struct FramePredictors {
   std::vector<MotionTransform> transforms;
 };
 constexpr uint32_t kMaxCandidates = 16;
+// Distinct Geometric geometry frames among one frame's candidates: each costs the decoder
+// a table of weights (GeometricWeightsCache holds this many), so the bound keeps decoding
+// linear in the frame's size whatever the file asks for.
+constexpr uint32_t kMaxGeometryFrames = 8;
+
+// Whether the candidates of one frame name at most kMaxGeometryFrames geometry frames.
+bool geometry_frames_within_bound(const FramePredictors& fp);
 
 // How frames are coded: in which order, each cluster and axis with which predictor.
 struct PredictorPlan {

@@ -182,5 +182,36 @@ TEST(GeometricPrediction, RoundTripsAndRejectsAnUnusableGeometryFrame) {
   EXPECT_FALSE(decode_residuals(c.model, &back, &err));
 }
 
+// Each geometry frame costs a decoder a table of weights: a frame may name at most
+// kMaxGeometryFrames of them, which encoder and decoder both enforce.
+TEST(GeometricPrediction, AFrameNamesAtMostEightGeometryFrames) {
+  AffineCase c = affine_case();
+  constexpr uint32_t F = 10;
+  const std::vector<int32_t> two = c.q;
+  for (uint32_t f = 2; f < F; f += 2) c.q.insert(c.q.end(), two.begin(), two.end());
+  c.model.meta.frame_count = F;
+  auto plan_naming = [&](uint32_t geometry_frames) {
+    PredictorPlan plan = uniform_plan({0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, std::vector<PredictorChoice>(3 * F));
+    for (uint32_t f = 0; f + 1 < F; ++f)
+      for (PredictorChoice& p : plan.frames[f].candidates[0]) p = {PredictorKind::None, 0, 0, SpatialMode::Mean, 0};
+    FramePredictors& last = plan.frames[F - 1];
+    last.candidates.assign(3, {});
+    last.cluster_candidate.assign(cluster_count(c.model.meta.vertex_count, plan.cluster_size), 0);
+    for (uint32_t j = 0; j < 3; ++j)
+      for (uint32_t a = 0; a < 3; ++a)
+        last.candidates[j][a] = {PredictorKind::Reference, F - 2, 0, SpatialMode::Geometric, (j * 3 + a) % geometry_frames};
+    return plan;
+  };
+  PredictorPlan nine = plan_naming(9);
+  EXPECT_TRUE(encode_residuals(c.model, c.q, &nine).empty());
+  PredictorPlan eight = plan_naming(8);
+  c.model.residual.payload = encode_residuals(c.model, c.q, &eight);
+  ASSERT_FALSE(c.model.residual.payload.empty());
+  std::vector<int32_t> back;
+  std::string err;
+  ASSERT_TRUE(decode_residuals(c.model, &back, &err)) << err;
+  EXPECT_EQ(back, c.q);
+}
+
 }  // namespace
 }  // namespace dcurve
