@@ -195,6 +195,11 @@ const int32_t* GeometricWeightsCache::get(const Traversal& t, const int32_t* q, 
   return entries_.back().second.data();
 }
 
+void GeometricWeightsCache::for_choice(const Traversal& t, const int32_t* q, const PredictorChoice* choice,
+                                       const int32_t* out[3]) {
+  for (int a = 0; a < 3; ++a) out[a] = choice[a].spatial == SpatialMode::Geometric ? get(t, q, choice[a].g) : nullptr;
+}
+
 bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
                       const ResidualOptions& options) {
   auto ok = [&](uint32_t r) { return r < decoded.size() && r != f && decoded[r]; };

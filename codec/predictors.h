@@ -126,6 +126,8 @@ class GeometricWeightsCache {
   // Weights of frame g of q (frame-major, V vertices); valid until kCapacity other frames
   // were asked for.
   const int32_t* get(const Traversal& t, const int32_t* q, uint32_t g);
+  // The weights of each axis of `choice` into out[0..2], null where an axis is not Geometric.
+  void for_choice(const Traversal& t, const int32_t* q, const PredictorChoice* choice, const int32_t* out[3]);
 
  private:
   // A frame names at most 8 geometry frames (kMaxGeometryFrames, codec/residual.h), so a

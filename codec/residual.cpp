@@ -106,9 +106,9 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
       const int32_t* ref[3];
       const int8_t* source[3];
       const int32_t* weights[3];
+      geometry.for_choice(trav, q, choice, weights);
       for (int a = 0; a < 3; ++a) {
         const PredictorChoice& c = choice[a];
-        weights[a] = c.spatial == SpatialMode::Geometric ? geometry.get(trav, q, c.g) : nullptr;
         source[a] = has_reference(c.kind) ? &res[size_t(c.r0) * stride] : previous;
         ref[a] = q + size_t(c.r0) * stride;
         if (c.kind != PredictorKind::Motion || have_map[slot]) continue;

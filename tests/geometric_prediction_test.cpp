@@ -117,12 +117,26 @@ AffineCase affine_case() {
   return c;
 }
 
-// Residuals of frame 1 predicted from frame 0 with the given spatial mode.
-std::vector<int64_t> frame1_residuals(const AffineCase& c, SpatialMode spatial) {
+// Frame 0 from its own neighbours, frame 1 from frame 0 with `spatial` (geometry: frame 0).
+PredictorPlan two_frame_plan(SpatialMode spatial) {
   const PredictorChoice intra{PredictorKind::None, 0, 0, SpatialMode::Parallelogram, 0};
   const PredictorChoice inter{PredictorKind::Reference, 0, 0, spatial, 0};
-  const PredictorPlan plan = uniform_plan({0, 1}, {intra, intra, intra, inter, inter, inter});
-  const std::vector<int64_t> all = residual_values(c.model, c.q, plan);
+  return uniform_plan({0, 1}, {intra, intra, intra, inter, inter, inter});
+}
+
+// Codes c.q with `plan` into c.model's payload and checks it decodes to c.q again.
+void expect_round_trip(AffineCase* c, const PredictorPlan& plan) {
+  c->model.residual.payload = encode_residuals(c->model, c->q, &plan);
+  ASSERT_FALSE(c->model.residual.payload.empty());
+  std::vector<int32_t> back;
+  std::string err;
+  ASSERT_TRUE(decode_residuals(c->model, &back, &err)) << err;
+  EXPECT_EQ(back, c->q);
+}
+
+// Residuals of frame 1 predicted from frame 0 with the given spatial mode.
+std::vector<int64_t> frame1_residuals(const AffineCase& c, SpatialMode spatial) {
+  const std::vector<int64_t> all = residual_values(c.model, c.q, two_frame_plan(spatial));
   EXPECT_EQ(all.size(), c.q.size());
   return std::vector<int64_t>(all.begin() + std::ptrdiff_t(all.size() / 2), all.end());
 }
@@ -151,15 +165,11 @@ TEST(GeometricPrediction, AffineMotionOfAnIrregularMeshToRounding) {
 
 TEST(GeometricPrediction, RoundTripsAndRejectsAnUnusableGeometryFrame) {
   AffineCase c = affine_case();
-  const PredictorChoice intra{PredictorKind::None, 0, 0, SpatialMode::Parallelogram, 0};
-  const PredictorChoice inter{PredictorKind::Reference, 0, 0, SpatialMode::Geometric, 0};
-  PredictorPlan plan = uniform_plan({0, 1}, {intra, intra, intra, inter, inter, inter});
-  c.model.residual.payload = encode_residuals(c.model, c.q, &plan);
-  ASSERT_FALSE(c.model.residual.payload.empty());
+  const PredictorPlan plan = two_frame_plan(SpatialMode::Geometric);
+  expect_round_trip(&c, plan);
+  if (HasFatalFailure()) return;
   std::vector<int32_t> back;
   std::string err;
-  ASSERT_TRUE(decode_residuals(c.model, &back, &err)) << err;
-  EXPECT_EQ(back, c.q);
   // The encoder refuses a geometry frame that is the frame itself.
   PredictorPlan self = plan;
   for (PredictorChoice& p : self.frames[1].candidates[0]) p.g = 1;
@@ -204,13 +214,7 @@ TEST(GeometricPrediction, AFrameNamesAtMostEightGeometryFrames) {
   };
   PredictorPlan nine = plan_naming(9);
   EXPECT_TRUE(encode_residuals(c.model, c.q, &nine).empty());
-  PredictorPlan eight = plan_naming(8);
-  c.model.residual.payload = encode_residuals(c.model, c.q, &eight);
-  ASSERT_FALSE(c.model.residual.payload.empty());
-  std::vector<int32_t> back;
-  std::string err;
-  ASSERT_TRUE(decode_residuals(c.model, &back, &err)) << err;
-  EXPECT_EQ(back, c.q);
+  expect_round_trip(&c, plan_naming(8));
 }
 
 }  // namespace

@@ -208,8 +208,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
           int64_t centre[3][3];
           const int32_t* ref[3];
           const int32_t* weights[3];
-          for (int a = 0; a < 3; ++a)
-            weights[a] = choice[a].spatial == SpatialMode::Geometric ? geometry.get(trav, q->data(), choice[a].g) : nullptr;
+          geometry.for_choice(trav, q->data(), choice, weights);
           const bool map_paid = std::find(paid[b].begin(), paid[b].end(), t) != paid[b].end();
           for (int a = 0; a < 3; ++a) {
             ref[a] = q->data() + size_t(choice[a].r0) * stride;

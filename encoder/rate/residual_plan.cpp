@@ -290,8 +290,8 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
     double best = HUGE_VAL;
     for (const PredictorChoice& c : candidates_for(*q, V, f, decoded, options, po)) {
       const PredictorChoice choice[3] = {c, c, c};
-      const int32_t* w = c.spatial == SpatialMode::Geometric ? geometry.get(trav, q->data(), c.g) : nullptr;
-      const int32_t* weights[3] = {w, w, w};
+      const int32_t* weights[3];
+      geometry.for_choice(trav, q->data(), choice, weights);
       for (int a = 0; a < 3; ++a) base_prediction(c, f, a, V, q->data(), options, &base[size_t(a) * V]);
       std::copy(qf, qf + stride, scratch.begin());
       for (uint32_t pos = 0; pos < V; ++pos) {
