@@ -99,10 +99,32 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, const std::vector<i
   return encode_residuals(pseudo, values, &plan, options);
 }
 
+// Least-squares coefficients of every frame of q against the quantized mean and basis
+// (values: mean, then K basis vectors), in the model's units (prediction * 2^S). The PCA
+// weights fit the unrounded basis; on a coarse basis step its rounding is a large part of
+// the prediction error, and refitting removes what a linear combination can.
+void refit_coefficients(const std::vector<int32_t>& q, const std::vector<int32_t>& values, uint32_t K, size_t n,
+                        uint32_t S, uint32_t mean_shift, std::vector<double>* weights) {
+  const size_t F = weights->size() / K;
+  Eigen::MatrixXd B{Eigen::Index(n), Eigen::Index(K)};
+  for (uint32_t k = 0; k < K; ++k)
+    for (size_t i = 0; i < n; ++i) B(Eigen::Index(i), Eigen::Index(k)) = values[(size_t(k) + 1) * n + i];
+  const Eigen::LDLT<Eigen::MatrixXd> normal(B.transpose() * B);
+  if (normal.info() != Eigen::Success) return;
+  const double up = std::ldexp(1.0, int(S)), mean_up = std::ldexp(1.0, int(S - mean_shift));
+  Eigen::VectorXd target{Eigen::Index(n)};
+  for (size_t f = 0; f < F; ++f) {
+    for (size_t i = 0; i < n; ++i) target(Eigen::Index(i)) = double(q[f * n + i]) * up - double(values[i]) * mean_up;
+    const Eigen::VectorXd c = normal.solve(B.transpose() * target);
+    if (!c.allFinite()) continue;
+    for (uint32_t k = 0; k < K; ++k) (*weights)[f * K + k] = c(Eigen::Index(k));
+  }
+}
+
 }  // namespace
 
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
-                       Model* model) {
+                       Model* model, const std::vector<int32_t>* q) {
   const uint32_t F = model->meta.frame_count;
   const size_t n = pca.mean.size();
   if (K == 0 || K > pca.weights.size() || K > kMaxLowRankComponents || !(basis_step > 0)) return false;
@@ -122,10 +144,6 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
   lr.components = K;
   lr.shift = S;
   lr.mean_shift = mean_shift;
-  lr.coeffs.resize(size_t(F) * K);
-  for (uint32_t f = 0; f < F; ++f)
-    for (uint32_t k = 0; k < K; ++k)
-      if (!round_to(pca.weights[k][f] * scale, kMaxLowRankCoeff, &lr.coeffs[size_t(f) * K + k])) return false;
   std::vector<int32_t> values((size_t(K) + 1) * n);
   const double mean_scale = std::ldexp(1.0, int(mean_shift));
   for (size_t i = 0; i < n; ++i)
@@ -134,6 +152,13 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
     for (size_t i = 0; i < n; ++i)
       if (!round_to(pca.amplitudes[k][i] / basis_step, kMaxLowRankBasis, &values[(size_t(k) + 1) * n + i]))
         return false;
+  std::vector<double> weights(size_t(F) * K);
+  for (uint32_t f = 0; f < F; ++f)
+    for (uint32_t k = 0; k < K; ++k) weights[size_t(f) * K + k] = pca.weights[k][f] * scale;
+  if (q) refit_coefficients(*q, values, K, n, S, mean_shift, &weights);
+  lr.coeffs.resize(size_t(F) * K);
+  for (size_t j = 0; j < weights.size(); ++j)
+    if (!round_to(weights[j], kMaxLowRankCoeff, &lr.coeffs[j])) return false;
   lr.basis_payload = code_mean_and_basis(*model, values, K + 1, threads);
   if (lr.basis_payload.empty()) return false;
   model->low_rank = std::move(lr);

@@ -29,6 +29,6 @@ GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t
 // neighbours) on up to `threads` threads (0: all cores; the bytes never depend on it).
 // False when a value would leave the format's ranges.
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
-                       Model* model);
+                       Model* model, const std::vector<int32_t>* q = nullptr);
 
 }  // namespace dcurve

@@ -156,7 +156,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   auto try_candidate = [&](uint32_t K, double step, bool* screened) {
     *screened = false;
     Model trial = *model;
-    if (!quantize_low_rank(pca, K, step, mean_shift_for(step), options.threads, &trial)) return true;
+    if (!quantize_low_rank(pca, K, step, mean_shift_for(step), options.threads, &trial, &rounded)) return true;
     const double section = double(low_rank_bytes(trial).size());
     if (!forced && section >= double(model->residual.payload.size())) return true;
     std::vector<int32_t> prediction, sampled, q = sample.rounded;
