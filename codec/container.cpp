@@ -256,6 +256,28 @@ bool parse_residual(ByteReader& r, Model* m) {
 
 }  // namespace
 
+uint64_t decoder_value_budget(size_t file_bytes) {
+  return std::max(uint64_t(1) << 23, uint64_t(8192) * uint64_t(file_bytes));
+}
+
+Curves singleton_curves(uint32_t V) {
+  Curves c;
+  c.vertices.resize(V);
+  c.offsets.resize(size_t(V) + 1);
+  c.closed.assign(V, 0);
+  c.u.assign(V, 0.f);
+  for (uint32_t v = 0; v < V; ++v) c.vertices[v] = c.offsets[v] = v;
+  c.offsets[V] = V;
+  return c;
+}
+
+bool is_singleton_curves(const Curves& c, uint32_t V) {
+  if (c.curve_count() != V || c.vertices.size() != V || c.u.size() != V || c.closed.size() != V) return false;
+  for (uint32_t v = 0; v < V; ++v)
+    if (c.vertices[v] != v || c.offsets[v] != v || c.closed[v] != 0 || c.u[v] != 0.f) return false;
+  return c.offsets[V] == V;
+}
+
 size_t motion_record_size(const CurveMotion& m) {
   ByteWriter w;
   write_motion(w, m);
@@ -266,8 +288,9 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;
   sections.emplace_back(kMeta, meta_bytes(model));
   if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model.faces, options));
-  sections.emplace_back(kCurves, curve_bytes(model));
-  sections.emplace_back(kSegments, segment_bytes(model));
+  // Since 2.2 the common case of neither curves nor segments costs no section at all.
+  if (!is_singleton_curves(model.curves, model.meta.vertex_count)) sections.emplace_back(kCurves, curve_bytes(model));
+  if (!model.segments.empty()) sections.emplace_back(kSegments, segment_bytes(model));
   if (model.low_rank.components > 0) sections.emplace_back(kLowRank, low_rank_bytes(model));
   if (model.residual.step > 0) sections.emplace_back(kResidual, residual_bytes(model));
 
@@ -386,6 +409,9 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     for (int k = known + 1; k < kKnown; ++k)
       if (seen[k]) return fail(error, "section " + name + " out of order");
     seen[known] = true;
+    // A file without CURV has one-point curves (section 7), which SEGS counts its motions by.
+    if (known > 2 && !seen[2] && model->curves.offsets.empty())
+      model->curves = singleton_curves(model->meta.vertex_count);
 
     if (flags & kSectionZstd) {
       if (raw_size > kMaxRawSection || raw_size > std::max(kExpansionFloor, stored * kMaxExpansion))
@@ -399,7 +425,12 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     }
     ByteReader s(raw.data(), raw.size());
     bool ok = false;
-    if (tag == kMeta) ok = parse_meta(s, model);
+    if (tag == kMeta) {
+      ok = parse_meta(s, model);
+      // Before anything sized by V or F is built (one-point curves of a file without CURV).
+      if (ok && uint64_t(model->meta.vertex_count) * model->meta.frame_count > decoder_value_budget(size) / 3)
+        return fail(error, "vertex and frame counts are implausible for the file size");
+    }
     else if (tag == kFaces) {
       if (infos && !raw.empty()) infos->back().face_layout = raw[0];
       std::string why;
@@ -414,8 +445,10 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     if (!ok || s.remaining() != 0) return fail(error, "section " + name + " is malformed");
   }
   if (r.remaining() != 0) return fail(error, "trailing bytes after the last section");
-  for (int k : {0, 2, 3})
-    if (!seen[k]) return fail(error, "missing required section " + tag_name(order[k]));
+  if (!seen[0]) return fail(error, "missing required section " + tag_name(order[0]));
+  if (!seen[2] && model->curves.offsets.empty())
+    model->curves = singleton_curves(model->meta.vertex_count);
+  if (!seen[3]) model->segments.clear();
   return validate_model(*model, error);
 }
 

@@ -40,6 +40,12 @@ struct Curves {
   uint32_t curve_count() const { return offsets.empty() ? 0u : uint32_t(offsets.size() - 1); }
 };
 
+// Every vertex its own open one-point curve (u = 0), in vertex id order: what a file
+// without a CURV section holds (format_spec/dcrv.md section 7), and what an encoder uses
+// when nothing reads the curves.
+Curves singleton_curves(uint32_t vertex_count);
+bool is_singleton_curves(const Curves& c, uint32_t vertex_count);
+
 // One curve's motion on one axis during one time segment.
 struct CurveMotion {
   Basis basis = Basis::Zero;

@@ -12,12 +12,6 @@
 
 namespace dcurve {
 
-// Tables the decoder may build, in floats per byte of file (with a floor for tiny files):
-// the bound that keeps a hostile file from asking for unbounded memory (format_spec/dcrv.md,
-// "Resource limits").
-constexpr uint64_t kMaxTableFloatsPerFileByte = 8192;
-constexpr uint64_t kMaxTableFloatsFloor = uint64_t(1) << 23;
-
 struct Decoder::Impl {
   Model model;
   FrameEvaluator evaluator;  // points into `model`: both live and die together
@@ -35,13 +29,9 @@ std::unique_ptr<Decoder> Decoder::open_memory(const void* data, size_t size, std
   if (!read_container(static_cast<const uint8_t*>(data), size, &impl->model, error)) return nullptr;
   std::vector<int32_t> q;
   const Model& m = impl->model;
-  // zstd can expand a section 4096-fold, so the residual's own bound is checked against the
-  // file size too, before the grid is allocated.
-  const uint64_t budget = std::max(kMaxTableFloatsFloor, kMaxTableFloatsPerFileByte * uint64_t(size));
-  if (uint64_t(m.meta.vertex_count) * m.meta.frame_count * 3 > budget) {
-    if (error) *error = "vertex and frame counts are implausible for the file size";
-    return nullptr;
-  }
+  // read_container checked V * F * 3 against the same budget (zstd can expand a section
+  // 4096-fold, so the residual's own bound alone would not do).
+  const uint64_t budget = decoder_value_budget(size);
   if (m.residual.step > 0) {
     // Files with a motion model may predict frames from it: its grid values come first.
     std::vector<int32_t> prediction;

@@ -24,20 +24,6 @@
 namespace dcurve {
 namespace {
 
-// Every vertex its own one-point curve: always a valid partition, used when nothing reads
-// the curves, or when extraction cannot handle the mesh (non-manifold input); the residual
-// layer then predicts from faces.
-Curves singleton_curves(uint32_t V) {
-  Curves c;
-  c.vertices.resize(V);
-  c.offsets.resize(V + 1);
-  c.closed.assign(V, 0);
-  c.u.assign(V, 0.f);
-  for (uint32_t v = 0; v < V; ++v) c.vertices[v] = c.offsets[v] = v;
-  c.offsets[V] = V;
-  return c;
-}
-
 // The input's face order or the face coder's traversal order, whichever gives the smaller
 // FACE section (each with its best layout): traversal wins on irregular meshes (Compact
 // codes it 2-4x smaller than the input order), a regular grid's own order can beat it.

@@ -216,9 +216,50 @@ TEST(Container, RoomToGrow) {
   EXPECT_NE(err.find("order"), std::string::npos) << err;
 
   RawFile missing = f;
-  missing.sections.erase(missing.sections.begin() + 2);  // CURV
+  missing.sections.erase(missing.sections.begin());  // META
   EXPECT_FALSE(reads(assemble(missing), &err));
-  EXPECT_NE(err.find("missing required section CURV"), std::string::npos) << err;
+  EXPECT_NE(err.find("missing required section META"), std::string::npos) << err;
+}
+
+// Format 2.2: a file whose curves are one point per vertex and that has no segments
+// carries neither CURV nor SEGS; a reader restores both, and still reads the explicit
+// sections a 2.1 writer wrote for the same model.
+TEST(Container, SingletonCurvesAndNoSegmentsNeedNoSections) {
+  Model m = small_model(3);
+  m.curves = singleton_curves(m.meta.vertex_count);
+  m.residual.payload = encode_residuals(m, testing::grid(m.meta.vertex_count, 3));
+  const std::vector<uint8_t> bytes = write_container(m);
+  Model back;
+  std::string err;
+  std::vector<SectionInfo> infos;
+  ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &back, &err, &infos)) << err;
+  for (const SectionInfo& s : infos) EXPECT_TRUE(s.tag != "CURV" && s.tag != "SEGS") << s.tag;
+  expect_same(m, back);
+  EXPECT_TRUE(is_singleton_curves(back.curves, m.meta.vertex_count));
+
+  // The same model with the two sections written out, as 2.1 wrote it.
+  RawFile f = split_file(bytes);
+  ByteWriter curv;
+  curv.u32(m.meta.vertex_count);
+  for (uint32_t v = 0; v < m.meta.vertex_count; ++v) curv.varint(2);  // length 1, open
+  curv.varint(0);
+  for (uint32_t v = 1; v < m.meta.vertex_count; ++v) curv.varint(2);  // id delta +1
+  for (uint32_t v = 0; v < m.meta.vertex_count; ++v) curv.u16(0);
+  f.sections.insert(f.sections.begin() + 2, plain_section("CURV", true, curv.data()));
+  f.sections.insert(f.sections.begin() + 3, plain_section("SEGS", true, {0, 0, 0, 0}));
+  Model explicit_back;
+  ASSERT_TRUE(read_container(assemble(f).data(), assemble(f).size(), &explicit_back, &err)) << err;
+  expect_same(back, explicit_back);
+  EXPECT_GT(assemble(f).size(), bytes.size() + 20);
+
+  // Curves other than one point per vertex still need CURV: a file without it is read with
+  // singleton curves, which then cannot match a SEGS section sized for two curves.
+  const std::vector<uint8_t> two_curves = write_container(small_model(3, {0, 2}));
+  RawFile g = split_file(two_curves);
+  ASSERT_EQ(g.sections[2].tag, "CURV");
+  g.sections.erase(g.sections.begin() + 2);
+  EXPECT_FALSE(reads(assemble(g), &err));
+  EXPECT_NE(err.find("SEGS"), std::string::npos) << err;
 }
 
 TEST(Container, RejectsEveryTruncation) {
@@ -260,7 +301,8 @@ TEST(Container, RejectsRandomFiles) {
 // Files whose checksums are right but whose counts are absurd must fail on the count, not
 // on an allocation (the sanitizer build aborts on a huge allocation).
 TEST(Container, RejectsAbsurdCountsWithValidChecksums) {
-  const RawFile f = split_file(write_container(small_model(3)));
+  const RawFile f = split_file(write_container(small_model(3, {0, 2})));  // all five sections
+  ASSERT_EQ(f.sections.size(), 5u);
   auto with_section = [&](size_t index, const std::vector<uint8_t>& raw) {
     RawFile g = f;
     g.sections[index] = plain_section(g.sections[index].tag, index != 1, raw);
@@ -275,7 +317,13 @@ TEST(Container, RejectsAbsurdCountsWithValidChecksums) {
   meta.f64(1);
   meta.str("");
   EXPECT_FALSE(reads(with_section(0, meta.data()), &err));
-  EXPECT_FALSE(err.empty());
+  EXPECT_NE(err.find("implausible"), std::string::npos) << err;
+  // Without CURV the one-point curves would be V long: the bound comes first.
+  RawFile no_curves = f;
+  no_curves.sections.erase(no_curves.sections.begin() + 2, no_curves.sections.begin() + 4);
+  no_curves.sections[0] = plain_section("META", true, meta.data());
+  EXPECT_FALSE(reads(assemble(no_curves), &err));
+  EXPECT_NE(err.find("implausible"), std::string::npos) << err;
 
   ByteWriter faces;
   faces.varint(uint64_t(1) << 40);

@@ -100,6 +100,12 @@ std::vector<Vector> recipes() {
   geometric.residual.payload = encode_residuals(geometric, testing::grid(geometric.meta.vertex_count, 6), &geometric_plan);
   v.push_back({"geometric", geometric, {}});
 
+  // One-point curves and no segments: neither CURV nor SEGS is written (format 2.2).
+  Model point_curves = small_model(4);
+  point_curves.curves = singleton_curves(point_curves.meta.vertex_count);
+  point_curves.residual.payload = encode_residuals(point_curves, testing::grid(point_curves.meta.vertex_count, 4));
+  v.push_back({"point_curves", point_curves, {}});
+
   Model low_rank_sheet = testing::sheet_model(5, 6);
   low_rank_sheet.faces = traversal_order(low_rank_sheet.faces);
   v.push_back({"low_rank", with_low_rank(low_rank_sheet), {}});
@@ -238,7 +244,7 @@ TEST(InfoCommand, DescribesTestVectorsAndRefusesDamage) {
   std::string out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "pde_segments.dcrv", &status);
   EXPECT_EQ(status, 0);
   for (const char* key : {"\"vertices\":6", "\"frames\":9", "\"faces\":4", "\"pde8\":12", "\"pde32\":3",
-                          "\"version\":\"2.1\"", "\"mode\":\"displacement\""})
+                          "\"version\":\"2.2\"", "\"mode\":\"displacement\""})
     EXPECT_NE(out.find(key), std::string::npos) << key << " in " << out;
   out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "sheet_traversal_faces.dcrv", &status);
   EXPECT_NE(out.find("\"face_layout\":\"traversal\""), std::string::npos) << out;
