@@ -147,6 +147,41 @@ TEST(LowRank, CoefficientsRefittedToTheRoundedBasisPredictCloser) {
   }
 }
 
+// Basis values are chosen within 0.75 basis steps of the exact amplitude (not always the
+// nearest integer), towards their spatial prediction; the mean is rounded, since its error
+// would repeat in every frame.
+TEST(LowRank, BasisValuesStayNearTheirAmplitudesAndTheMeanIsRounded) {
+  const Animation anim = bending_sheet(12, 9, 24);
+  const uint32_t V = anim.vertex_count, F = uint32_t(anim.frames.size());
+  const size_t n = size_t(V) * 3;
+  std::vector<int32_t> q;
+  for (const auto& frame : anim.frames)
+    for (float x : frame) q.push_back(int32_t(std::lround((x + 1.0) / 2e-4)));
+  Model m;
+  m.meta.vertex_count = V;
+  m.meta.frame_count = F;
+  m.faces = anim.faces;
+  const GridComponents pca = grid_components(q, F, n, 3);
+  const double step = 0.5;
+  ASSERT_TRUE(quantize_low_rank(pca, 3, step, 1, 1, &m, &q));
+  Model pseudo = m;
+  pseudo.meta.frame_count = 4;
+  pseudo.residual.payload = m.low_rank.basis_payload;
+  std::vector<int32_t> values;
+  std::string err;
+  ASSERT_TRUE(decode_residuals(pseudo, &values, &err)) << err;
+  ASSERT_EQ(values.size(), 4 * n);
+  size_t moved = 0;
+  for (size_t i = 0; i < n; ++i) EXPECT_EQ(values[i], std::nearbyint(pca.mean[i] * 2)) << i;
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t i = 0; i < n; ++i) {
+      const double exact = pca.amplitudes[k][i] / step;
+      EXPECT_LE(std::fabs(values[(k + 1) * n + i] - exact), 0.75 + 1e-9) << k << " " << i;
+      moved += values[(k + 1) * n + i] != std::lround(exact);
+    }
+  EXPECT_GT(moved, 0u) << "snapping chose no value other than the nearest";
+}
+
 TEST(LowRank, RoundShiftIsHalfUpDivision) {
   std::mt19937_64 rng(7);
   for (int i = 0; i < 20000; ++i) {

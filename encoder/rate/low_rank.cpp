@@ -44,14 +44,46 @@ bool round_to(double x, int64_t limit, int32_t* out) {
   return true;
 }
 
+// A basis vector's values may lie up to this far (basis steps, per value) from the exact
+// amplitude instead of at the nearest integer: snapped towards their spatial prediction,
+// they code smaller, and the residual layer corrects the larger basis error.
+constexpr double kBasisSnap = 0.75;
+
+// One basis vector's values qf (V * 3) chosen from its exact amplitudes x (basis steps):
+// each the integer within kBasisSnap of its amplitude that lies nearest its prediction under
+// `mode` (kind None; Geometric weights from `mean`, the mean's values), vertices in traversal
+// order so every prediction sees the values chosen before it.
+void snap_basis_vector(const Traversal& t, const double* x_all, const int32_t* mean, SpatialMode mode, int32_t* qf) {
+  const PredictorChoice choice[3] = {{PredictorKind::None, 0, 0, mode, 0}, {PredictorKind::None, 0, 0, mode, 0},
+                                     {PredictorKind::None, 0, 0, mode, 0}};
+  std::vector<int32_t> weights;
+  if (mode == SpatialMode::Geometric) weights = geometric_weights(t, mean);
+  const int32_t* w[3] = {weights.data(), weights.data(), weights.data()};
+  auto zero = [](uint32_t, int) { return int64_t(0); };
+  for (uint32_t pos = 0; pos < t.order.size(); ++pos) {
+    const size_t v = t.order[pos];
+    int64_t pred[3];
+    vertex_prediction(choice, t, pos, qf, zero, pred, w);
+    for (int a = 0; a < 3; ++a) {
+      const double x = x_all[v * 3 + size_t(a)];
+      const double limit = double(kMaxLowRankBasis);
+      const double lo = std::max(std::ceil(x - kBasisSnap), -limit), hi = std::min(std::floor(x + kBasisSnap), limit);
+      qf[v * 3 + size_t(a)] = int32_t(std::clamp(double(pred[a]), lo, std::max(lo, hi)));
+    }
+  }
+}
+
 // Codes the K + 1 pseudo-frames with the residual coder, each from its own mesh neighbours
 // (kind None) with the spatial mode that codes it smallest: the mean and the first
 // components are smooth fields (Parallelogram or Mean wins), the last ones mostly noise
 // that neighbours do not predict (Off wins). A mode per pseudo-frame instead of one for all:
 // neck 13,472 -> 12,984 bytes, rope-small 50,225 -> 48,714 at 1e-3. A basis vector is a
 // field over the mean shape, so Geometric takes its weights from the mean (g = 0).
-std::vector<uint8_t> code_mean_and_basis(const Model& model, const std::vector<int32_t>& values, uint32_t frames,
-                                         int threads) {
+// Basis values are snapped (snap_basis_vector) under each mode tried; `values` receives the
+// ones coded. `exact`: the K basis vectors' amplitudes in basis steps.
+std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t>* values_io,
+                                         const std::vector<double>& exact, uint32_t frames, int threads) {
+  std::vector<int32_t>& values = *values_io;
   const size_t n = size_t(model.meta.vertex_count) * 3;
   Model pseudo;
   pseudo.meta = model.meta;
@@ -69,30 +101,38 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, const std::vector<i
   const Traversal trav = build_traversal(pseudo);
   ResidualOptions options;
   options.traversal = &trav;
-  // The mode of the last of `trial`'s frames that codes `vals` (those frames) smallest.
-  auto smallest_mode = [&](const std::vector<int32_t>& vals, std::vector<SpatialMode> trial) {
+  // The mode of the last of `trial`'s frames that codes `vals` (those frames) smallest; with
+  // `snap` (that frame's exact amplitudes), the frame is snapped under each mode first and
+  // `vals` keeps the best's values.
+  auto smallest_mode = [&](std::vector<int32_t>* vals, std::vector<SpatialMode> trial, const double* snap) {
     Model m = pseudo;
     m.meta.frame_count = uint32_t(trial.size());
     size_t smallest = SIZE_MAX;
     SpatialMode best = SpatialMode::Off;
+    std::vector<int32_t> best_vals;
+    const size_t last = trial.size() - 1;
     for (uint8_t s = 0; s < kSpatialModeCount; ++s) {
       trial.back() = SpatialMode(s);
+      if (snap) snap_basis_vector(trav, snap, vals->data(), SpatialMode(s), vals->data() + last * n);
       PredictorPlan plan = plan_of(trial);
-      const size_t bytes = encode_residuals(m, vals, &plan, options).size();
+      const size_t bytes = encode_residuals(m, *vals, &plan, options).size();
       if (bytes > 0 && bytes < smallest) {
         smallest = bytes;
         best = SpatialMode(s);
+        if (snap) best_vals = *vals;
       }
     }
+    if (snap && !best_vals.empty()) *vals = std::move(best_vals);
     return best;
   };
   std::vector<SpatialMode> modes(frames, SpatialMode::Off);
-  const std::vector<int32_t> mean(values.begin(), values.begin() + std::ptrdiff_t(n));
-  modes[0] = smallest_mode(mean, {SpatialMode::Off});
+  std::vector<int32_t> mean(values.begin(), values.begin() + std::ptrdiff_t(n));
+  modes[0] = smallest_mode(&mean, {SpatialMode::Off}, nullptr);
   parallel_for(frames - 1, threads, [&](size_t k) {
     std::vector<int32_t> two = mean;  // the mean, then basis vector k
     two.insert(two.end(), values.begin() + std::ptrdiff_t((k + 1) * n), values.begin() + std::ptrdiff_t((k + 2) * n));
-    modes[k + 1] = smallest_mode(two, {modes[0], SpatialMode::Off});
+    modes[k + 1] = smallest_mode(&two, {modes[0], SpatialMode::Off}, exact.data() + k * n);
+    std::copy(two.begin() + std::ptrdiff_t(n), two.end(), values.begin() + std::ptrdiff_t((k + 1) * n));
   });
   pseudo.meta.frame_count = frames;
   PredictorPlan plan = plan_of(modes);
@@ -148,10 +188,14 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
   const double mean_scale = std::ldexp(1.0, int(mean_shift));
   for (size_t i = 0; i < n; ++i)
     if (!round_to(pca.mean[i] * mean_scale, INT32_MAX, &values[i])) return false;
+  std::vector<double> exact(size_t(K) * n);
   for (uint32_t k = 0; k < K; ++k)
-    for (size_t i = 0; i < n; ++i)
-      if (!round_to(pca.amplitudes[k][i] / basis_step, kMaxLowRankBasis, &values[(size_t(k) + 1) * n + i]))
-        return false;
+    for (size_t i = 0; i < n; ++i) {
+      exact[size_t(k) * n + i] = pca.amplitudes[k][i] / basis_step;
+      if (!round_to(exact[size_t(k) * n + i], kMaxLowRankBasis, &values[(size_t(k) + 1) * n + i])) return false;
+    }
+  lr.basis_payload = code_mean_and_basis(*model, &values, exact, K + 1, threads);
+  if (lr.basis_payload.empty()) return false;
   std::vector<double> weights(size_t(F) * K);
   for (uint32_t f = 0; f < F; ++f)
     for (uint32_t k = 0; k < K; ++k) weights[size_t(f) * K + k] = pca.weights[k][f] * scale;
@@ -159,8 +203,6 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
   lr.coeffs.resize(size_t(F) * K);
   for (size_t j = 0; j < weights.size(); ++j)
     if (!round_to(weights[j], kMaxLowRankCoeff, &lr.coeffs[j])) return false;
-  lr.basis_payload = code_mean_and_basis(*model, values, K + 1, threads);
-  if (lr.basis_payload.empty()) return false;
   model->low_rank = std::move(lr);
   return true;
 }

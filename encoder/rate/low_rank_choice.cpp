@@ -224,10 +224,14 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   if (F > 2 && plan_without.order[1] > 1) trial_plan.gop_sizes.push_back(plan_without.order[1]);
   uint64_t best = forced ? UINT64_MAX : rep.bytes_without;
   Model best_model;
+  const bool cheap = double(F) * model->meta.vertex_count <= kCheapTrial;
+  std::vector<uint32_t> tried_counts;
   for (const Candidate& c : candidates) {
-    if (rep.trials >= options.max_trials) break;
-    const double factor = double(F) * model->meta.vertex_count <= kCheapTrial ? kCheapTrialSavingFactor : kTrialSavingFactor;
-    if (!forced && c.saved_bytes <= factor * c.section_bytes) continue;
+    if (rep.trials >= (cheap ? options.max_cheap_trials : options.max_trials)) break;
+    if (!forced && c.saved_bytes <= (cheap ? kCheapTrialSavingFactor : kTrialSavingFactor) * c.section_bytes) continue;
+    // A second trial of the same count at another step mostly repeats the first's error.
+    if (std::find(tried_counts.begin(), tried_counts.end(), c.model.components) != tried_counts.end()) continue;
+    tried_counts.push_back(c.model.components);
     Model trial = *model;
     trial.low_rank = c.model;
     if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, error))

@@ -15,8 +15,12 @@ struct LowRankChoiceOptions {
   // -1: automatic (kept only when the file gets smaller); 0: never; K in 1..64: always use K
   // components (for studies; the file may get larger).
   int components = -1;
-  // Full residual encodes tried with a low-rank model, best screened candidates first, >= 1.
-  uint32_t max_trials = 1;
+  // Full residual encodes tried with a low-rank model, best screened candidates first (one
+  // per component count), >= 1; max_cheap_trials on inputs of at most 2^18 vertex-frames.
+  // The screening misjudges savings by up to 2x both ways, so its first choice can fail its
+  // trial while another count pays: blob at 1e-3 (grid 3x) screened K = 8 first, whose trial
+  // lost, and K = 16 second.
+  uint32_t max_trials = 1, max_cheap_trials = 2;
   int threads = 0;  // 0: all cores; the result never depends on it
 };
 
