@@ -146,13 +146,13 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t
 void refit_coefficients(const std::vector<int32_t>& q, const std::vector<int32_t>& values, uint32_t K, size_t n,
                         uint32_t S, uint32_t mean_shift, std::vector<double>* weights) {
   const size_t F = weights->size() / K;
-  Eigen::MatrixXd B{Eigen::Index(n), Eigen::Index(K)};
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(K));
   for (uint32_t k = 0; k < K; ++k)
     for (size_t i = 0; i < n; ++i) B(Eigen::Index(i), Eigen::Index(k)) = values[(size_t(k) + 1) * n + i];
   const Eigen::LDLT<Eigen::MatrixXd> normal(B.transpose() * B);
   if (normal.info() != Eigen::Success) return;
   const double up = std::ldexp(1.0, int(S)), mean_up = std::ldexp(1.0, int(S - mean_shift));
-  Eigen::VectorXd target{Eigen::Index(n)};
+  Eigen::VectorXd target = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   for (size_t f = 0; f < F; ++f) {
     for (size_t i = 0; i < n; ++i) target(Eigen::Index(i)) = double(q[f * n + i]) * up - double(values[i]) * mean_up;
     const Eigen::VectorXd c = normal.solve(B.transpose() * target);
