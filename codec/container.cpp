@@ -427,8 +427,10 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     bool ok = false;
     if (tag == kMeta) {
       ok = parse_meta(s, model);
-      // Before anything sized by V or F is built (one-point curves of a file without CURV).
-      if (ok && uint64_t(model->meta.vertex_count) * model->meta.frame_count > decoder_value_budget(size) / 3)
+      // Before anything sized by V or F is built (one-point curves of a file without CURV);
+      // F = 0, rejected later, must not let any V through.
+      if (ok && uint64_t(model->meta.vertex_count) * std::max(model->meta.frame_count, 1u) >
+                    decoder_value_budget(size) / 3)
         return fail(error, "vertex and frame counts are implausible for the file size");
     }
     else if (tag == kFaces) {

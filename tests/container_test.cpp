@@ -324,6 +324,18 @@ TEST(Container, RejectsAbsurdCountsWithValidChecksums) {
   no_curves.sections[0] = plain_section("META", true, meta.data());
   EXPECT_FALSE(reads(assemble(no_curves), &err));
   EXPECT_NE(err.find("implausible"), std::string::npos) << err;
+  // F = 0 (invalid, but only found later) with a billion vertices: found by the fuzzer, which
+  // saw the one-point curves allocated before the bound applied.
+  ByteWriter no_frames;
+  no_frames.u32(1000000000u);
+  no_frames.u32(0);
+  no_frames.f64(30);
+  no_frames.f64(1e-3);
+  no_frames.f64(1);
+  no_frames.str("");
+  no_curves.sections[0] = plain_section("META", true, no_frames.data());
+  EXPECT_FALSE(reads(assemble(no_curves), &err));
+  EXPECT_NE(err.find("implausible"), std::string::npos) << err;
 
   ByteWriter faces;
   faces.varint(uint64_t(1) << 40);
