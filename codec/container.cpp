@@ -409,6 +409,9 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     for (int k = known + 1; k < kKnown; ++k)
       if (seen[k]) return fail(error, "section " + name + " out of order");
     seen[known] = true;
+    // A file without CURV has one-point curves (section 7), which SEGS counts its motions by.
+    if (known > 2 && !seen[2] && model->curves.offsets.empty())
+      model->curves = singleton_curves(model->meta.vertex_count);
 
     if (flags & kSectionZstd) {
       if (raw_size > kMaxRawSection || raw_size > std::max(kExpansionFloor, stored * kMaxExpansion))
@@ -429,9 +432,6 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
       if (ok && uint64_t(model->meta.vertex_count) * std::max(model->meta.frame_count, 1u) >
                     decoder_value_budget(size) / 3)
         return fail(error, "vertex and frame counts are implausible for the file size");
-      // What a file without CURV holds (section 7), and what SEGS then counts its motions
-      // by; a CURV section replaces it.
-      model->curves = singleton_curves(model->meta.vertex_count);
     }
     else if (tag == kFaces) {
       if (infos && !raw.empty()) infos->back().face_layout = raw[0];
@@ -448,6 +448,9 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
   }
   if (r.remaining() != 0) return fail(error, "trailing bytes after the last section");
   if (!seen[0]) return fail(error, "missing required section " + tag_name(order[0]));
+  if (!seen[2] && model->curves.offsets.empty())
+    model->curves = singleton_curves(model->meta.vertex_count);
+  if (!seen[3]) model->segments.clear();
   return validate_model(*model, error);
 }
 

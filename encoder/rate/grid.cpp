@@ -95,12 +95,12 @@ GridChoice choose_grid(const Animation& anim, double max_distance, int threads, 
     return b;
   };
   run({kFirstTrials[0], kFirstTrials[1]});
-  auto in_range = [](long i) { return i >= 0 && i < long(kGridTrialSlots); };
   for (;;) {
     const size_t b = best();
     std::vector<size_t> next;
     for (int d : {-1, 1}) {
       const long near = long(b) + d, far = long(b) + 2 * d;
+      auto in_range = [](long i) { return i >= 0 && i < long(kGridTrialSlots); };
       if (in_range(near) && !tried[near]) {
         next.push_back(size_t(near));
       } else if (in_range(near) && in_range(far) && !tried[far] &&
