@@ -16,7 +16,8 @@ constexpr uint16_t kFormatVersionMinor = 2;
 
 // Values (floats or grid values) a decoder may build for a file of `file_bytes` bytes:
 // max(2^23, 8192 * file_bytes), the bound that keeps a small hostile file from asking for
-// gigabytes (format_spec/dcrv.md section 13). read_container rejects V * F * 3 above it.
+// gigabytes (format_spec/dcrv.md section 13). read_container rejects V * max(F, 1) * 3
+// above it.
 uint64_t decoder_value_budget(size_t file_bytes);
 
 struct WriteOptions {
