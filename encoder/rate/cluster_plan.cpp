@@ -147,6 +147,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
   for (uint32_t f : order) {
     int32_t* qf = q->data() + size_t(f) * stride;
     const float* input = frames[f].data();
+    const std::vector<AxisRun> runs = po.snap ? axis_runs(model.residual, input, V, radius) : std::vector<AxisRun>();
     std::copy(qf, qf + stride, orig.begin());
     // The pool: the frame-wide candidates, and a motion-compensated twin of every Reference.
     ResidualPlanOptions with_references = po;
@@ -238,7 +239,9 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
             std::copy(&orig[size_t(v) * 3], &orig[size_t(v) * 3] + 3, qv);
             int64_t pred[3];
             vertex_prediction(choice, trav, pos, qf, base_of, pred, weights);
-            if (po.snap) snap_vertex(model.residual, input + size_t(v) * 3, radius, po.distance_weight, pred, qv);
+            if (po.snap)
+              snap_vertex(model.residual, input + size_t(v) * 3, &runs[size_t(v) * 3], radius, po.distance_weight, pred,
+                          qv);
             uint8_t axis_max = 0;
             for (int a = 0; a < 3; ++a) {
               const int64_t r = int64_t(qv[a]) - pred[a];

@@ -24,6 +24,18 @@ int residual_class(int64_t r, int* exponent);
 void snap_vertex(const ResidualLayer& layer, const float* x, double radius, double distance_weight,
                  const int64_t* pred, int32_t* qv);
 
+// The grid values of one axis whose decoded coordinate lies within radius of the input's
+// x (the other axes aside): the run [lo, hi], empty when lo > hi, and its value nearest x.
+// They do not depend on the prediction, so a plan computes them once per frame.
+struct AxisRun {
+  int64_t lo = 0, hi = -1, nearest = 0;
+};
+// The runs of every coordinate of one frame (xyz: V * 3 input coordinates), in that order.
+std::vector<AxisRun> axis_runs(const ResidualLayer& layer, const float* xyz, size_t V, double radius);
+// snap_vertex with x's three runs (axis_run of each axis, same radius) given.
+void snap_vertex(const ResidualLayer& layer, const float* x, const AxisRun* runs, double radius,
+                 double distance_weight, const int64_t* pred, int32_t* qv);
+
 // Class (0..3, 4 for none) of the earlier neighbours' residual magnitudes (clamped, by
 // vertex and axis) of traversal position pos on axis.
 int neighbour_class(const Traversal& t, uint32_t pos, int axis, const std::vector<uint8_t>& magnitude);

@@ -43,12 +43,42 @@ static double distance2(const ResidualLayer& layer, const float* x, const int64_
   return d2;
 }
 
+static AxisRun axis_run(const ResidualLayer& layer, int a, float x, double radius) {
+  const double r2 = radius * radius, xa = x;
+  auto d2_of = [&](int64_t k) {
+    const double d = double(grid_to_model(layer, a, k)) - xa;
+    return d * d;
+  };
+  // The admissible values form one run [lo, hi]: the decoded position is monotonic in k.
+  AxisRun run;
+  run.lo = int64_t(std::floor((xa - radius - layer.origin[a]) / layer.step));
+  run.hi = int64_t(std::ceil((xa + radius - layer.origin[a]) / layer.step));
+  while (run.lo <= run.hi && d2_of(run.lo) > r2) ++run.lo;
+  while (run.hi >= run.lo && d2_of(run.hi) > r2) --run.hi;
+  if (run.lo <= run.hi)
+    run.nearest = std::clamp<int64_t>(std::llround((xa - layer.origin[a]) / layer.step), run.lo, run.hi);
+  return run;
+}
+
+std::vector<AxisRun> axis_runs(const ResidualLayer& layer, const float* xyz, size_t V, double radius) {
+  std::vector<AxisRun> runs(V * 3);
+  for (size_t i = 0; i < runs.size(); ++i) runs[i] = axis_run(layer, int(i % 3), xyz[i], radius);
+  return runs;
+}
+
+void snap_vertex(const ResidualLayer& layer, const float* x, double radius, double distance_weight,
+                 const int64_t* pred, int32_t* qv) {
+  const AxisRun runs[3] = {axis_run(layer, 0, x[0], radius), axis_run(layer, 1, x[1], radius),
+                           axis_run(layer, 2, x[2], radius)};
+  snap_vertex(layer, x, runs, radius, distance_weight, pred, qv);
+}
+
 // Moves qv (the vertex's three grid values) to the admissible grid point (decoded within
 // radius of x) with the lowest score: estimated bits against `pred`, plus
 // distance_weight * (distance / radius)^2 bits, since a point near the input predicts
 // later frames better; keeps qv when no other point qualifies.
-void snap_vertex(const ResidualLayer& layer, const float* x, double radius, double distance_weight,
-                 const int64_t* pred, int32_t* qv) {
+void snap_vertex(const ResidualLayer& layer, const float* x, const AxisRun* runs, double radius,
+                 double distance_weight, const int64_t* pred, int32_t* qv) {
   const double r2 = radius * radius;
   auto score = [&](const int64_t* k, double d2) {
     return residual_cost(k[0] - pred[0]) + residual_cost(k[1] - pred[1]) + residual_cost(k[2] - pred[2]) +
@@ -79,14 +109,9 @@ void snap_vertex(const ResidualLayer& layer, const float* x, double radius, doub
       const double d = double(grid_to_model(layer, a, k)) - xa;
       return d * d;
     };
-    // The admissible values form one run [lo, hi]: the decoded position is monotonic in k.
-    int64_t lo = int64_t(std::floor((xa - radius - layer.origin[a]) / layer.step));
-    int64_t hi = int64_t(std::ceil((xa + radius - layer.origin[a]) / layer.step));
-    while (lo <= hi && d2_of(lo) > r2) ++lo;
-    while (hi >= lo && d2_of(hi) > r2) --hi;
+    const int64_t lo = runs[a].lo, hi = runs[a].hi, nearest = runs[a].nearest;
     best[a] = qv[a];
     if (lo > hi) continue;
-    const int64_t nearest = std::clamp<int64_t>(std::llround((xa - layer.origin[a]) / layer.step), lo, hi);
     // The value of [l, h] nearest the input, the lowest of equally near ones (|d| falls,
     // then rises, with k; rounding to float can make runs of equal distances).
     auto nearest_in = [&](int64_t l, int64_t h, int bits) {
@@ -285,9 +310,11 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
   std::vector<int32_t> scratch(stride), best_frame(stride);
   double total = 0;
   GeometricWeightsCache geometry;
+  std::vector<AxisRun> runs;
   for (uint32_t f : order) {
     int32_t* qf = q->data() + size_t(f) * stride;
     double best = HUGE_VAL;
+    if (po.snap) runs = axis_runs(model.residual, frames[f].data(), V, radius);
     for (const PredictorChoice& c : candidates_for(*q, V, f, decoded, options, po)) {
       const PredictorChoice choice[3] = {c, c, c};
       const int32_t* weights[3];
@@ -300,7 +327,9 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
         vertex_prediction(choice, trav, pos, scratch.data(),
                           [&](uint32_t u, int a) { return base[size_t(a) * V + u]; }, pred, weights);
         int32_t* qv = &scratch[size_t(v) * 3];
-        if (po.snap) snap_vertex(model.residual, &frames[f][size_t(v) * 3], radius, po.distance_weight, pred, qv);
+        if (po.snap)
+          snap_vertex(model.residual, &frames[f][size_t(v) * 3], &runs[size_t(v) * 3], radius, po.distance_weight, pred,
+                      qv);
         uint8_t axis_max = 0;
         for (int a = 0; a < 3; ++a) {
           const int64_t r = int64_t(qv[a]) - pred[a];
