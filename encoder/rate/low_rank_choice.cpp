@@ -227,7 +227,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   const bool cheap = double(F) * model->meta.vertex_count <= kCheapTrial;
   std::vector<uint32_t> tried_counts;
   for (const Candidate& c : candidates) {
-    if (rep.trials >= (cheap ? options.max_cheap_trials : options.max_trials)) break;
+    if (rep.trials >= options.max_trials) break;
     if (!forced && c.saved_bytes <= (cheap ? kCheapTrialSavingFactor : kTrialSavingFactor) * c.section_bytes) continue;
     // A second trial of the same count at another step mostly repeats the first's error.
     if (std::find(tried_counts.begin(), tried_counts.end(), c.model.components) != tried_counts.end()) continue;
