@@ -32,7 +32,8 @@ struct AxisRun {
 };
 // The runs of every coordinate of one frame (xyz: V * 3 input coordinates), in that order.
 std::vector<AxisRun> axis_runs(const ResidualLayer& layer, const float* xyz, size_t V, double radius);
-// snap_vertex with x's three runs (axis_run of each axis, same radius) given.
+// snap_vertex with x's three runs given (runs[a] for axis a, as axis_runs computes them for
+// the same layer and radius); the overload above computes them itself.
 void snap_vertex(const ResidualLayer& layer, const float* x, const AxisRun* runs, double radius,
                  double distance_weight, const int64_t* pred, int32_t* qv);
 
