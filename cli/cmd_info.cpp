@@ -99,6 +99,7 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
            {{"components", m.low_rank.components},
             {"shift", m.low_rank.shift},
             {"mean_shift", m.low_rank.mean_shift},
+            {"coefficient_shifts", m.low_rank.coeff_shifts},
             {"basis_payload_bytes", m.low_rank.basis_payload.size()}}},
           {"sections", js}};
 }
@@ -140,8 +141,9 @@ void print_text(const nlohmann::json& j) {
                 (unsigned long long)r["payload_bytes"].get<uint64_t>());
     const auto& lr = j["low_rank"];
     if (lr["components"].get<uint32_t>() > 0)
-      std::printf("  low-rank model (Model predictor): %u components, shift %u, mean shift %u, basis %llu bytes\n",
+      std::printf("  low-rank model (Model predictor): %u components, shift %u, mean shift %u, coefficient shifts %s, basis %llu bytes\n",
                   lr["components"].get<uint32_t>(), lr["shift"].get<uint32_t>(), lr["mean_shift"].get<uint32_t>(),
+                  lr["coefficient_shifts"].empty() ? "none" : lr["coefficient_shifts"].dump().c_str(),
                   (unsigned long long)lr["basis_payload_bytes"].get<uint64_t>());
     if (!r["predictors"].is_null())
       std::printf("  predictors per frame and axis: %s; spatial corrections: %s; %s coding order\n",

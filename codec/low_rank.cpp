@@ -1,6 +1,7 @@
 #include "codec/low_rank.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 #include "codec/int_coder.h"
 #include "codec/range_coder.h"
@@ -17,36 +18,62 @@ int64_t predicted_coeff(const std::vector<int32_t>& c, size_t i, size_t K) {
 
 // Bit 7 of the component byte: the differences are range-coded (format 2.1), not svarints.
 constexpr uint8_t kRangeCoded = 0x80;
+// Bit 7 of the mean-shift byte: K per-component coefficient shifts follow (format 2.3).
+constexpr uint8_t kCoeffShifts = 0x80;
 
 // A range-coded stream may hold many values per byte; a decoder allocates F * K values only
 // when F * K <= 4096 + 64 * stream bytes (the writer keeps svarints beyond that).
 bool range_count_plausible(uint64_t count, uint64_t stream_bytes) { return count <= 4096 + 64 * stream_bytes; }
 
-std::vector<uint8_t> range_coded_differences(const LowRankModel& lr) {
+int64_t difference(const std::vector<int32_t>& c, size_t i, size_t K) { return int64_t(c[i]) - predicted_coeff(c, i, K); }
+
+// Magnitude context of stored coefficient i with per-component shifts (2.3): the class of the
+// same component's difference one frame earlier (6 for frame 0). Shifted components differ in
+// magnitude by orders, which one shared context averages away.
+constexpr int kCoeffContexts = 7;
+int coeff_context(const std::vector<int32_t>& c, size_t i, size_t K) {
+  if (i < K) return 6;
+  const uint64_t m = uint64_t(std::abs(difference(c, i - K, K)));
+  return m == 0 ? 0 : m == 1 ? 1 : m < 4 ? 2 : m < 16 ? 3 : m < 256 ? 4 : 5;
+}
+
+std::vector<uint8_t> range_coded_differences(const std::vector<int32_t>& stored, size_t K, bool contexts) {
   RangeEncoder enc;
-  AdaptiveIntCoder coder(1, 1);
-  for (size_t i = 0; i < lr.coeffs.size(); ++i)
-    coder.encode(enc, 0, 0, int64_t(lr.coeffs[i]) - predicted_coeff(lr.coeffs, i, lr.components));
+  AdaptiveIntCoder coder(contexts ? kCoeffContexts : 1, 1);
+  for (size_t i = 0; i < stored.size(); ++i)
+    coder.encode(enc, contexts ? coeff_context(stored, i, K) : 0, 0, difference(stored, i, K));
   return enc.finish();
+}
+
+bool has_coeff_shifts(const LowRankModel& lr) {
+  return std::any_of(lr.coeff_shifts.begin(), lr.coeff_shifts.end(), [](uint8_t s) { return s > 0; });
 }
 }  // namespace
 
 std::vector<uint8_t> low_rank_bytes(const Model& m) {
   const LowRankModel& lr = m.low_rank;
+  const size_t K = lr.components;
+  const bool shifted = has_coeff_shifts(lr);
+  // The coefficients as stored: divided by their component's 2^shift (exact by contract).
+  std::vector<int32_t> stored = lr.coeffs;
+  if (shifted)
+    for (size_t i = 0; i < stored.size(); ++i) stored[i] = int32_t(int64_t(stored[i]) >> lr.coeff_shifts[i % K]);
   // Svarints, or the adaptive range coder when that is smaller: the differences of one
   // file have similar magnitudes, which a varint's fixed 7-bit groups do not exploit.
   ByteWriter varints;
-  for (size_t i = 0; i < lr.coeffs.size(); ++i)
-    varints.varint(zigzag_encode(int64_t(lr.coeffs[i]) - predicted_coeff(lr.coeffs, i, lr.components)));
-  const std::vector<uint8_t> stream = range_coded_differences(lr);
+  for (size_t i = 0; i < stored.size(); ++i)
+    varints.varint(zigzag_encode(int64_t(stored[i]) - predicted_coeff(stored, i, K)));
+  const std::vector<uint8_t> stream = range_coded_differences(stored, K, shifted);
   ByteWriter sized;
   sized.varint(stream.size());
-  const bool ranged = range_count_plausible(lr.coeffs.size(), stream.size()) &&
+  const bool ranged = range_count_plausible(stored.size(), stream.size()) &&
                       sized.size() + stream.size() < varints.size();
   ByteWriter w;
   w.u8(uint8_t(lr.components | (ranged ? kRangeCoded : 0)));
   w.u8(uint8_t(lr.shift));
-  w.u8(uint8_t(lr.mean_shift));
+  w.u8(uint8_t(lr.mean_shift | (shifted ? kCoeffShifts : 0)));
+  if (shifted)
+    for (uint8_t s : lr.coeff_shifts) w.u8(s);
   if (ranged) {
     w.varint(stream.size());
     w.bytes(stream.data(), stream.size());
@@ -64,12 +91,21 @@ bool parse_low_rank(ByteReader& r, Model* m) {
   const bool ranged = first & kRangeCoded;
   lr.components = first & ~kRangeCoded;
   lr.shift = r.u8();
-  lr.mean_shift = r.u8();
+  const uint8_t third = r.u8();
+  lr.mean_shift = third & ~kCoeffShifts;
   if (!r.ok || lr.components == 0 || lr.components > kMaxLowRankComponents || lr.shift > kMaxLowRankShift ||
       lr.mean_shift > lr.shift)
     return false;
-  const uint64_t count = uint64_t(m->meta.frame_count) * lr.components;
   const size_t K = lr.components;
+  lr.coeff_shifts.clear();
+  if (third & kCoeffShifts) {
+    for (size_t k = 0; k < K; ++k) lr.coeff_shifts.push_back(r.u8());
+    if (!r.ok) return false;
+    for (uint8_t s : lr.coeff_shifts)
+      if (s > lr.shift) return false;
+  }
+  const uint64_t count = uint64_t(m->meta.frame_count) * K;
+  // Stored values first (the extrapolation runs on them), scaled once all are read.
   auto store = [&](size_t i, int64_t c) {
     if (c < -kMaxLowRankCoeff || c > kMaxLowRankCoeff) return false;
     lr.coeffs[i] = int32_t(c);
@@ -79,10 +115,13 @@ bool parse_low_rank(ByteReader& r, Model* m) {
     const uint64_t stream_size = r.varint();
     if (!r.ok || stream_size > r.remaining() || !range_count_plausible(count, stream_size)) return false;
     RangeDecoder dec(r.take(size_t(stream_size)), size_t(stream_size));
-    AdaptiveIntCoder coder(1, 1);
+    const bool contexts = !lr.coeff_shifts.empty();
+    AdaptiveIntCoder coder(contexts ? kCoeffContexts : 1, 1);
     lr.coeffs.resize(size_t(count));
-    for (size_t i = 0; i < lr.coeffs.size(); ++i)
-      if (!store(i, predicted_coeff(lr.coeffs, i, K) + coder.decode(dec, 0, 0))) return false;
+    for (size_t i = 0; i < lr.coeffs.size(); ++i) {
+      const int ctx = contexts ? coeff_context(lr.coeffs, i, K) : 0;
+      if (!store(i, predicted_coeff(lr.coeffs, i, K) + coder.decode(dec, ctx, 0))) return false;
+    }
     if (!dec.at_clean_end()) return false;
   } else {
     if (count > r.remaining()) return false;  // >= 1 byte per coefficient
@@ -92,6 +131,12 @@ bool parse_low_rank(ByteReader& r, Model* m) {
       if (!add_zigzag_delta(predicted_coeff(lr.coeffs, i, K), r.varint(), &c) || !store(i, c)) return false;
     }
   }
+  if (!lr.coeff_shifts.empty())
+    for (size_t i = 0; i < lr.coeffs.size(); ++i) {
+      const int64_t c = int64_t(lr.coeffs[i]) * (int64_t(1) << lr.coeff_shifts[i % K]);
+      if (c < -kMaxLowRankCoeff || c > kMaxLowRankCoeff) return false;
+      lr.coeffs[i] = int32_t(c);
+    }
   const uint64_t n = r.varint();
   const uint8_t* p = r.ok && n <= r.remaining() ? r.take(size_t(n)) : nullptr;
   if (!p) return false;

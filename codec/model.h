@@ -85,6 +85,10 @@ struct LowRankModel {
   uint32_t shift = 0;        // S, 0..kMaxLowRankShift
   uint32_t mean_shift = 0;   // the mean is stored in units of 2^-mean_shift grid steps, <= shift
   std::vector<int32_t> coeffs;         // frame_count * K, frame-major, |c| <= kMaxLowRankCoeff
+  // Empty (all 0) or K values 0..shift: component k's coefficients are multiples of
+  // 2^coeff_shifts[k] and stored divided by it (format 2.3). A component whose basis values
+  // are small needs coarser coefficients for the same prediction error.
+  std::vector<uint8_t> coeff_shifts;
   std::vector<uint8_t> basis_payload;  // residual-layer payload of the K + 1 pseudo-frames
 };
 

@@ -90,6 +90,14 @@ bool validate_model(const Model& m, std::string* error) {
       return fail(error, "low-rank model fields out of range");
     for (int32_t c : lr.coeffs)
       if (c < -kMaxLowRankCoeff || c > kMaxLowRankCoeff) return fail(error, "low-rank coefficient out of range");
+    if (!lr.coeff_shifts.empty()) {
+      if (lr.coeff_shifts.size() != lr.components) return fail(error, "low-rank coefficient shift count mismatch");
+      for (size_t i = 0; i < lr.coeffs.size(); ++i) {
+        const uint32_t s = lr.coeff_shifts[i % lr.components];
+        if (s > lr.shift || lr.coeffs[i] % (int32_t(1) << s) != 0)
+          return fail(error, "low-rank coefficient is not a multiple of its component's shift");
+      }
+    }
     const uint64_t values = (uint64_t(lr.components) + 1) * V * 3;
     if (values > std::max<uint64_t>(kMaxValuesFloor, kMaxValuesPerPayloadByte * lr.basis_payload.size()))
       return fail(error, "vertex count and rank are implausible for the low-rank basis size");

@@ -27,7 +27,7 @@ struct Vector {
   WriteOptions options;
 };
 
-// A hand-made low-rank model (LRNK) on `m`, and its residual re-coded with the Model
+// A hand-made low-rank model (LRNK, with coefficient shifts) on `m`, and its residual re-coded with the Model
 // predictor on every frame: the grid values, hence the expected positions, do not change.
 Model with_low_rank(Model m) {
   const uint32_t V = m.meta.vertex_count, F = m.meta.frame_count, K = 2;
@@ -35,7 +35,9 @@ Model with_low_rank(Model m) {
   lr.components = K;
   lr.shift = 3;
   lr.mean_shift = 1;
-  for (uint32_t f = 0; f < F; ++f) lr.coeffs.insert(lr.coeffs.end(), {int32_t(8 * f) - 5, int32_t(f * f) - 3});
+  // Component 1's coefficients are multiples of 4, stored divided by 4 (format 2.3).
+  lr.coeff_shifts = {0, 2};
+  for (uint32_t f = 0; f < F; ++f) lr.coeffs.insert(lr.coeffs.end(), {int32_t(8 * f) - 5, 4 * (int32_t(f * f) - 3)});
   std::vector<int32_t> mean_and_basis;
   for (uint32_t k = 0; k <= K; ++k)
     for (uint32_t v = 0; v < V; ++v)
@@ -244,7 +246,7 @@ TEST(InfoCommand, DescribesTestVectorsAndRefusesDamage) {
   std::string out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "pde_segments.dcrv", &status);
   EXPECT_EQ(status, 0);
   for (const char* key : {"\"vertices\":6", "\"frames\":9", "\"faces\":4", "\"pde8\":12", "\"pde32\":3",
-                          "\"version\":\"2.2\"", "\"mode\":\"displacement\""})
+                          "\"version\":\"2.3\"", "\"mode\":\"displacement\""})
     EXPECT_NE(out.find(key), std::string::npos) << key << " in " << out;
   out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "sheet_traversal_faces.dcrv", &status);
   EXPECT_NE(out.find("\"face_layout\":\"traversal\""), std::string::npos) << out;

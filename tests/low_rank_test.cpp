@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -337,6 +338,98 @@ TEST(LowRank, CoefficientsDecodeTheSameInBothLayouts) {
   const uint8_t tiny[] = {0x81, 4, 0, 1, 0, 0};
   ByteReader r(tiny, sizeof tiny);
   EXPECT_FALSE(parse_low_rank(r, &huge));
+}
+
+// Per-component coefficient shifts (2.3): an encode of a model with weak components stores
+// their coefficients coarser (multiples of 2^s[k], s[k] > 0 somewhere), the section is
+// smaller than the same coefficients stored unshifted, and both layouts, written here
+// independently of the codec (svarints), decode to the same frames.
+TEST(LowRank, CoefficientShiftsShrinkTheSectionAndDecodeTheSame) {
+  const Animation anim = bending_sheet(12, 8, 24);
+  std::vector<uint8_t> bytes;
+  const Model m = encoded_model(anim, 6, &bytes);
+  const LowRankModel& lr = m.low_rank;
+  ASSERT_EQ(lr.coeff_shifts.size(), 6u);
+  EXPECT_GT(*std::max_element(lr.coeff_shifts.begin(), lr.coeff_shifts.end()), 0) << "no component was shifted";
+  const size_t K = lr.components;
+  for (size_t i = 0; i < lr.coeffs.size(); ++i) {
+    ASSERT_LE(lr.coeff_shifts[i % K], lr.shift);
+    ASSERT_EQ(lr.coeffs[i] % (1 << lr.coeff_shifts[i % K]), 0) << "coefficient " << i;
+  }
+  // One layout: svarint differences of the values given, to linear extrapolation.
+  auto payload = [&](bool shifted) {
+    std::vector<int64_t> stored;
+    for (size_t i = 0; i < lr.coeffs.size(); ++i) stored.push_back(lr.coeffs[i] >> (shifted ? lr.coeff_shifts[i % K] : 0));
+    ByteWriter w;
+    w.u8(uint8_t(K));
+    w.u8(uint8_t(lr.shift));
+    w.u8(uint8_t(lr.mean_shift | (shifted ? 0x80 : 0)));
+    if (shifted)
+      for (uint8_t s : lr.coeff_shifts) w.u8(s);
+    for (size_t i = 0; i < stored.size(); ++i) {
+      const int64_t p = i >= 2 * K ? 2 * stored[i - K] - stored[i - 2 * K] : i >= K ? stored[i - K] : 0;
+      w.varint(zigzag_encode(stored[i] - p));
+    }
+    w.varint(lr.basis_payload.size());
+    w.bytes(lr.basis_payload.data(), lr.basis_payload.size());
+    return w.data();
+  };
+  std::string err;
+  auto original = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+  ASSERT_TRUE(original) << err;
+  std::vector<float> a(size_t(anim.vertex_count) * 3), b(a.size());
+  size_t sizes[2] = {0, 0};
+  for (bool shifted : {false, true}) {
+    const std::vector<uint8_t> raw = payload(shifted);
+    sizes[shifted] = raw.size();
+    const std::vector<uint8_t> file = with_low_rank_payload(bytes, raw);
+    auto dec = Decoder::open_memory(file.data(), file.size(), &err);
+    ASSERT_TRUE(dec) << err << (shifted ? " (shifted)" : " (unshifted)");
+    for (uint32_t f = 0; f < dec->frame_count(); ++f) {
+      dec->evaluate_frame(f, a.data());
+      original->evaluate_frame(f, b.data());
+      ASSERT_EQ(a, b) << "frame " << f;
+    }
+  }
+  EXPECT_LT(sizes[1], sizes[0]);
+  EXPECT_LT(low_rank_payload(bytes).size(), sizes[0]) << "the encoder's section is not smaller than unshifted svarints";
+}
+
+// A shift above S, a stored coefficient that its shift carries past 2^24, and (for the
+// writer) a coefficient that is not a multiple of its component's 2^shift are rejected.
+TEST(LowRank, BadCoefficientShiftsAreRejected) {
+  const Animation anim = bending_sheet(10, 6, 16);
+  std::vector<uint8_t> bytes;
+  Model m = encoded_model(anim, 2, &bytes);
+  const uint8_t S = uint8_t(m.low_rank.shift);
+  ASSERT_GE(S, 2);
+  auto payload = [&](uint8_t s0, int64_t first) {
+    ByteWriter w;
+    w.u8(2);
+    w.u8(S);
+    w.u8(uint8_t(m.low_rank.mean_shift | 0x80));
+    w.u8(s0);
+    w.u8(0);
+    for (size_t i = 0; i < size_t(2) * anim.frames.size(); ++i) w.varint(zigzag_encode(i == 0 ? first : 0));
+    w.varint(m.low_rank.basis_payload.size());
+    w.bytes(m.low_rank.basis_payload.data(), m.low_rank.basis_payload.size());
+    return with_low_rank_payload(bytes, w.data());
+  };
+  std::string err;
+  Model read;
+  const std::vector<uint8_t> fine = payload(2, 5);
+  EXPECT_TRUE(read_container(fine.data(), fine.size(), &read, &err)) << err;
+  EXPECT_EQ(read.low_rank.coeffs[0], 20);
+  const std::vector<uint8_t> above = payload(uint8_t(S + 1), 5);
+  EXPECT_FALSE(read_container(above.data(), above.size(), &read, &err)) << "shift above S";
+  const std::vector<uint8_t> carried = payload(2, (int64_t(1) << 23) + 1);
+  EXPECT_FALSE(read_container(carried.data(), carried.size(), &read, &err)) << "2^23 + 1 shifted by 2";
+  m.low_rank.coeff_shifts = {1, 0};
+  m.low_rank.coeffs[0] = 3;
+  EXPECT_FALSE(validate_model(m, &err)) << "odd coefficient with shift 1";
+  m.low_rank.coeff_shifts = {1};
+  m.low_rank.coeffs[0] = 4;
+  EXPECT_FALSE(validate_model(m, &err)) << "one shift for two components";
 }
 
 TEST(LowRank, AbsurdFieldsAreRejected) {
