@@ -195,11 +195,30 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
       ++worse;
     }
   }
+  // Counts between the listed ones, halfway to the best one's neighbours in the list,
+  // screened the same way: the net saving is smooth enough in K near its best that one
+  // halving finds most of what every count would (blob at 1e-3: K = 20 between 16 and 24,
+  // 14,028 -> 13,334 bytes; screening every count from 1 to 64 costs about 5x the time).
+  auto by_net = [](const Candidate& a, const Candidate& b) { return a.net_bytes < b.net_bytes; };
+  if (!forced && !candidates.empty()) {
+    const auto best_count = std::max_element(candidates.begin(), candidates.end(), by_net);
+    if (best_count->net_bytes > 0) {
+      const uint32_t K = best_count->model.components;
+      const auto at = std::find(counts.begin(), counts.end(), K);
+      std::vector<uint32_t> between;
+      if (at != counts.begin()) between.push_back((*(at - 1) + K) / 2);
+      if (at != counts.end() && at + 1 != counts.end()) between.push_back((K + *(at + 1)) / 2);
+      for (uint32_t mid : between) {
+        const bool listed = std::find(counts.begin(), counts.end(), mid) != counts.end();
+        bool screened = false;
+        if (!listed && mid <= available && !try_candidate(mid, kFirstStep, &screened)) return false;
+      }
+    }
+  }
   // Other steps for the best count, unless even the coarsest could not pay: a coarser basis
   // saves less, and its section shrinks by about the step ratio at most. When no count
   // pays at the first step, the one that comes closest relative to its section: a coarser
   // step may make it pay (the sheet at 1e-3, grid 4x: K = 48 at step 0.4).
-  auto by_net = [](const Candidate& a, const Candidate& b) { return a.net_bytes < b.net_bytes; };
   auto by_ratio = [](const Candidate& a, const Candidate& b) {
     return a.saved_bytes * b.section_bytes < b.saved_bytes * a.section_bytes;
   };
