@@ -224,6 +224,32 @@ TEST(LowRank, BuiltinSceneWithinToleranceEveryFrame) {
   }
 }
 
+// An animation of exactly ten smooth modes: ten is not in the screened list (8, 12), and the
+// screening halfway to the best count's neighbours must find it.
+TEST(LowRank, FindsACountBetweenTheListedOnes) {
+  const uint32_t W = 16, H = 12, F = 48, modes = 10;
+  Animation anim = bending_sheet(W, H, F);
+  for (uint32_t f = 0; f < F; ++f)
+    for (uint32_t y = 0; y < H; ++y)
+      for (uint32_t x = 0; x < W; ++x) {
+        const double u = double(x) / (W - 1), w = double(y) / (H - 1);
+        float* p = &anim.frames[f][3 * (y * W + x)];
+        p[0] = float(u);
+        p[1] = float(0.5 * w);
+        p[2] = 0;
+        for (uint32_t m = 0; m < modes; ++m) {
+          // Mode m: a smooth field with its own weight over time, none a mix of the others.
+          const double field = std::sin(M_PI * (m % 4 + 1) * u + m) * std::cos(M_PI * (m / 4 + 1) * w + 0.5 * m);
+          const double weight = std::sin(2 * M_PI * (m + 1) * f / F + 0.7 * m) * 0.08 / (1 + 0.15 * m);
+          p[2] += float(field * weight);
+        }
+      }
+  EncodeReport rep;
+  const std::vector<uint8_t> bytes = encode(anim, -1, &rep);
+  EXPECT_EQ(rep.low_rank_components, modes);
+  EXPECT_LE(decoded_max_error(bytes, anim), 1e-3);
+}
+
 TEST(LowRank, PredictionIsTheSameOnEveryPath) {
   const Animation anim = bending_sheet(12, 8, 24);
   std::vector<uint8_t> bytes;
