@@ -199,29 +199,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
       ++worse;
     }
   }
-  // Counts between the screened ones, halfway to the best one's screened neighbours: near
-  // its best the net saving is smooth enough in K for that to find what the list misses
-  // (blob at 1e-3: K = 20 between 16 and 24, 14,028 -> 13,308 bytes).
   auto by_net = [](const Candidate& a, const Candidate& b) { return a.net_bytes < b.net_bytes; };
-  for (int round = 0; round < kBisections && !forced && !candidates.empty(); ++round) {
-    const auto best_count = std::max_element(candidates.begin(), candidates.end(), by_net);
-    if (best_count->net_bytes <= 0) break;
-    std::vector<uint32_t> screened_counts;
-    for (const Candidate& c : candidates) screened_counts.push_back(c.model.components);
-    std::sort(screened_counts.begin(), screened_counts.end());
-    screened_counts.erase(std::unique(screened_counts.begin(), screened_counts.end()), screened_counts.end());
-    const uint32_t K = best_count->model.components;
-    const auto at = std::find(screened_counts.begin(), screened_counts.end(), K);
-    std::vector<uint32_t> between;
-    if (at != screened_counts.begin()) between.push_back((*(at - 1) + K) / 2);
-    if (at + 1 != screened_counts.end()) between.push_back((K + *(at + 1)) / 2);
-    for (uint32_t mid : between) {
-      bool screened = false;
-      if (!std::binary_search(screened_counts.begin(), screened_counts.end(), mid) && mid <= available &&
-          !try_candidate(mid, kFirstStep, &screened))
-        return false;
-    }
-  }
   // Other steps for the best count, unless even the coarsest could not pay: a coarser basis
   // saves less, and its section shrinks by about the step ratio at most. When no count
   // pays at the first step, the one that comes closest relative to its section: a coarser
@@ -238,6 +216,31 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   for (double step : kOtherSteps) {
     bool screened = false;
     if (refine && !try_candidate(refine_count, step, &screened)) return false;
+  }
+  // Counts between the screened ones, halfway to the best one's screened neighbours, at the
+  // best one's step: near its best the net saving is smooth enough in K for that to find
+  // what the list misses (blob at 1e-3: K = 20 between 16 and 24, 14,028 -> 13,308 bytes).
+  // After the step search, so that a count found here competes at a refined step, not
+  // the first one.
+  for (int round = 0; round < kBisections && !forced && !candidates.empty(); ++round) {
+    const auto best_count = std::max_element(candidates.begin(), candidates.end(), by_net);
+    if (best_count->net_bytes <= 0) break;
+    std::vector<uint32_t> screened_counts;
+    for (const Candidate& c : candidates) screened_counts.push_back(c.model.components);
+    std::sort(screened_counts.begin(), screened_counts.end());
+    screened_counts.erase(std::unique(screened_counts.begin(), screened_counts.end()), screened_counts.end());
+    const uint32_t K = best_count->model.components;
+    const double step = best_count->basis_step;  // try_candidate may move the candidates
+    const auto at = std::find(screened_counts.begin(), screened_counts.end(), K);
+    std::vector<uint32_t> between;
+    if (at != screened_counts.begin()) between.push_back((*(at - 1) + K) / 2);
+    if (at + 1 != screened_counts.end()) between.push_back((K + *(at + 1)) / 2);
+    for (uint32_t mid : between) {
+      bool screened = false;
+      if (!std::binary_search(screened_counts.begin(), screened_counts.end(), mid) && mid <= available &&
+          !try_candidate(mid, step, &screened))
+        return false;
+    }
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.net_bytes > b.net_bytes; });
