@@ -57,7 +57,7 @@ std::vector<uint8_t> low_rank_bytes(const Model& m) {
   // The coefficients as stored: divided by their component's 2^shift (exact by contract).
   std::vector<int32_t> stored = lr.coeffs;
   if (shifted)
-    for (size_t i = 0; i < stored.size(); ++i) stored[i] = int32_t(int64_t(stored[i]) >> lr.coeff_shifts[i % K]);
+    for (size_t i = 0; i < stored.size(); ++i) stored[i] = int32_t(int64_t(stored[i]) / (int64_t(1) << lr.coeff_shifts[i % K]));
   // Svarints, or the adaptive range coder when that is smaller: the differences of one
   // file have similar magnitudes, which a varint's fixed 7-bit groups do not exploit.
   ByteWriter varints;

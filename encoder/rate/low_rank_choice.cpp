@@ -24,8 +24,9 @@ constexpr uint32_t kComponentCounts[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 6
 constexpr double kFirstStep = 0.15;
 constexpr double kOtherSteps[] = {0.1, 0.25, 0.4, 0.6, 1.0, 1.6, 2.5, 4.0};
 // Rounds of screening counts halfway between the best screened count and its neighbours.
-// A second round lost on the blob at 1e-3: its estimate preferred K = 18, whose full encode
-// was larger (13,568 bytes against 13,308 for K = 20), and only the best estimate is encoded.
+// A second round lost on the blob at 1e-3 (with the midpoints at the first step): its
+// estimate preferred K = 18, whose full encode was larger (13,568 bytes against 13,308 for
+// K = 20), and only the best estimate is encoded.
 constexpr int kBisections = 1;
 // Frames the screening estimate samples (every ceil(F / this)-th frame).
 constexpr uint32_t kScreenFrames = 24;
