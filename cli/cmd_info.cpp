@@ -141,7 +141,8 @@ void print_text(const nlohmann::json& j) {
                 (unsigned long long)r["payload_bytes"].get<uint64_t>());
     const auto& lr = j["low_rank"];
     if (lr["components"].get<uint32_t>() > 0)
-      std::printf("  low-rank model (Model predictor): %u components, shift %u, mean shift %u, coefficient shifts %s, basis %llu bytes\n",
+      std::printf("  low-rank model (Model predictor): %u components, shift %u, mean shift %u, "
+                  "coefficient shifts %s, basis %llu bytes\n",
                   lr["components"].get<uint32_t>(), lr["shift"].get<uint32_t>(), lr["mean_shift"].get<uint32_t>(),
                   lr["coefficient_shifts"].empty() ? "none" : lr["coefficient_shifts"].dump().c_str(),
                   (unsigned long long)lr["basis_payload_bytes"].get<uint64_t>());

@@ -25,7 +25,9 @@ constexpr uint8_t kCoeffShifts = 0x80;
 // when F * K <= 4096 + 64 * stream bytes (the writer keeps svarints beyond that).
 bool range_count_plausible(uint64_t count, uint64_t stream_bytes) { return count <= 4096 + 64 * stream_bytes; }
 
-int64_t difference(const std::vector<int32_t>& c, size_t i, size_t K) { return int64_t(c[i]) - predicted_coeff(c, i, K); }
+int64_t difference(const std::vector<int32_t>& c, size_t i, size_t K) {
+  return int64_t(c[i]) - predicted_coeff(c, i, K);
+}
 
 // Magnitude context of stored coefficient i with per-component shifts (2.3): the class of the
 // same component's difference one frame earlier (6 for frame 0). Shifted components differ in
@@ -57,12 +59,12 @@ std::vector<uint8_t> low_rank_bytes(const Model& m) {
   // The coefficients as stored: divided by their component's 2^shift (exact by contract).
   std::vector<int32_t> stored = lr.coeffs;
   if (shifted)
-    for (size_t i = 0; i < stored.size(); ++i) stored[i] = int32_t(int64_t(stored[i]) / (int64_t(1) << lr.coeff_shifts[i % K]));
+    for (size_t i = 0; i < stored.size(); ++i)
+      stored[i] = int32_t(int64_t(stored[i]) / (int64_t(1) << lr.coeff_shifts[i % K]));
   // Svarints, or the adaptive range coder when that is smaller: the differences of one
   // file have similar magnitudes, which a varint's fixed 7-bit groups do not exploit.
   ByteWriter varints;
-  for (size_t i = 0; i < stored.size(); ++i)
-    varints.varint(zigzag_encode(int64_t(stored[i]) - predicted_coeff(stored, i, K)));
+  for (size_t i = 0; i < stored.size(); ++i) varints.varint(zigzag_encode(difference(stored, i, K)));
   const std::vector<uint8_t> stream = range_coded_differences(stored, K, shifted);
   ByteWriter sized;
   sized.varint(stream.size());

@@ -27,8 +27,9 @@ struct Vector {
   WriteOptions options;
 };
 
-// A hand-made low-rank model (LRNK, with coefficient shifts) on `m`, and its residual re-coded with the Model
-// predictor on every frame: the grid values, hence the expected positions, do not change.
+// A hand-made low-rank model (LRNK, with coefficient shifts) on `m`, and its residual
+// re-coded with the Model predictor on every frame: the grid values, hence the expected
+// positions, do not change.
 Model with_low_rank(Model m) {
   const uint32_t V = m.meta.vertex_count, F = m.meta.frame_count, K = 2;
   LowRankModel& lr = m.low_rank;

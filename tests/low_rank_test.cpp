@@ -385,7 +385,8 @@ TEST(LowRank, CoefficientShiftsShrinkTheSectionAndDecodeTheSame) {
   // One layout: svarint differences of the values given, to linear extrapolation.
   auto payload = [&](bool shifted) {
     std::vector<int64_t> stored;
-    for (size_t i = 0; i < lr.coeffs.size(); ++i) stored.push_back(lr.coeffs[i] >> (shifted ? lr.coeff_shifts[i % K] : 0));
+    for (size_t i = 0; i < lr.coeffs.size(); ++i)
+      stored.push_back(lr.coeffs[i] >> (shifted ? lr.coeff_shifts[i % K] : 0));
     ByteWriter w;
     w.u8(uint8_t(K));
     w.u8(uint8_t(lr.shift));

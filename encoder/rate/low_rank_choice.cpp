@@ -23,11 +23,6 @@ namespace {
 constexpr uint32_t kComponentCounts[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
 constexpr double kFirstStep = 0.15;
 constexpr double kOtherSteps[] = {0.1, 0.25, 0.4, 0.6, 1.0, 1.6, 2.5, 4.0};
-// Rounds of screening counts halfway between the best screened count and its neighbours.
-// A second round lost on the blob at 1e-3 (with the midpoints at the first step): its
-// estimate preferred K = 18, whose full encode was larger (13,568 bytes against 13,308 for
-// K = 20), and only the best estimate is encoded.
-constexpr int kBisections = 1;
 // Frames the screening estimate samples (every ceil(F / this)-th frame).
 constexpr uint32_t kScreenFrames = 24;
 // Counts past the best one screened before giving up on larger ones: every count, since the
@@ -221,11 +216,12 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   // Counts between the screened ones, halfway to the best one's screened neighbours, at the
   // best one's step: near its best the net saving is smooth enough in K for that to find
   // what the list misses (blob at 1e-3: K = 20 between 16 and 24, 14,028 -> 13,308 bytes).
-  // After the step search, so that a count found here competes at a refined step, not
-  // the first one.
-  for (int round = 0; round < kBisections && !forced && !candidates.empty(); ++round) {
-    const auto best_count = std::max_element(candidates.begin(), candidates.end(), by_net);
-    if (best_count->net_bytes <= 0) break;
+  // After the step search, so that a count found here competes at a refined step, not the
+  // first one. Once: a second halving (tried with the midpoints at the first step) lost on
+  // the blob, its estimate preferring K = 18, whose full encode was larger (13,568 bytes),
+  // and only the best estimate is encoded.
+  const auto best_count = std::max_element(candidates.begin(), candidates.end(), by_net);
+  if (!forced && best_count != candidates.end() && best_count->net_bytes > 0) {
     std::vector<uint32_t> screened_counts;
     for (const Candidate& c : candidates) screened_counts.push_back(c.model.components);
     std::sort(screened_counts.begin(), screened_counts.end());
