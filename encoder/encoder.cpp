@@ -97,6 +97,7 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   wo.connectivity = opt.connectivity;
   LowRankChoiceOptions lro;
   lro.components = opt.low_rank;
+  lro.first_frame_anchor = opt.low_rank_first_frame;
   lro.threads = opt.threads;
   LowRankChoiceReport rep;
   if (!choose_low_rank(m, anim.frames, start.rounded, start.snap, wo, lro, &rep, error)) return false;

@@ -38,6 +38,9 @@ struct EncodeOptions {
   // -1 automatic (kept only where the file gets smaller), 0 off, 1..64 that many components
   // always. Not combined with a PDE model (automatic turns off, a count is an error).
   int low_rank = -1;
+  // Whether the low-rank choice also screens components around the first frame, besides
+  // around the frame average (for studies: false screens the average alone).
+  bool low_rank_first_frame = true;
   // Residual grid: 0 chosen by trial encodes (encoder/rate/grid.h; most inputs cost four
   // plain encodes), else the coarsest safe grid made this many times finer, in [1, 16],
   // which skips the trials.

@@ -12,13 +12,16 @@
 
 namespace dcurve {
 
-GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t n, uint32_t max_components) {
+GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t n, uint32_t max_components,
+                               uint32_t anchor) {
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   RowMajor X(F, n);
   for (uint32_t f = 0; f < F; ++f)
     for (size_t i = 0; i < n; ++i) X(f, Eigen::Index(i)) = q[size_t(f) * n + i];
   GridComponents out;
-  const Eigen::RowVectorXd mean = X.colwise().mean();
+  out.anchor = anchor < F ? anchor : kMeanAnchor;
+  const Eigen::RowVectorXd mean =
+      out.anchor == kMeanAnchor ? Eigen::RowVectorXd(X.colwise().mean()) : Eigen::RowVectorXd(X.row(out.anchor));
   out.mean.assign(mean.data(), mean.data() + n);
   X.rowwise() -= mean;
   // F is small next to 3V: the F x F Gram matrix has the same nonzero spectrum as X^T X.
@@ -183,6 +186,10 @@ std::vector<uint8_t> coefficient_shifts(const std::vector<int32_t>& values, uint
 }
 
 }  // namespace
+
+size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads) {
+  return code_mean_and_basis(model, &values, {}, 1, threads).size();
+}
 
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
                        Model* model, const std::vector<int32_t>* q) {

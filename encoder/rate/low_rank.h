@@ -8,19 +8,31 @@
 
 namespace dcurve {
 
+// The origin of the components: the frame average (classic PCA), or a frame of the input.
+constexpr uint32_t kMeanAnchor = UINT32_MAX;
+
 // X = mean + sum_k weights[k] (x) amplitudes[k], all in grid units: frame f, coordinate i
 // (= v * 3 + axis) is mean[i] + sum_k weights[k][f] * amplitudes[k][i]. Weights have unit
 // RMS over the frames; amplitudes carry the component's size. Components by falling energy.
+// `mean` is the anchor's values: the frame average, or frame `anchor`'s (integers).
 struct GridComponents {
   std::vector<double> mean;                    // n
   std::vector<std::vector<double>> weights;    // K x F
   std::vector<std::vector<double>> amplitudes; // K x n
+  uint32_t anchor = kMeanAnchor;
 };
 
 // PCA of the grid values q (frame-major, F frames of n values) through the F x F Gram matrix
 // (cheap when F is small next to n), keeping at most max_components components with
-// non-negligible energy. Deterministic.
-GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t n, uint32_t max_components);
+// non-negligible energy. anchor: kMeanAnchor centres on the frame average; a frame index
+// (< F) takes the components of the differences to that frame instead, which the frame
+// itself then predicts exactly. Deterministic.
+GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t n, uint32_t max_components,
+                               uint32_t anchor = kMeanAnchor);
+
+// Bytes of `values` (V * 3 grid values) coded as an LRNK basis payload's pseudo-frame 0
+// alone, as quantize_low_rank codes it: with the spatial mode that codes it smallest.
+size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads);
 
 // Quantizes the first K components (K <= pca.weights.size()) into model->low_rank: basis
 // values on a step of basis_step grid units, the mean on 2^-mean_shift grid units, the

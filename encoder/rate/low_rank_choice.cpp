@@ -43,9 +43,11 @@ constexpr double kCheapTrial = double(1 << 18);
 // Above this many multiply-adds the F x F Gram matrix is not worth building automatically.
 constexpr double kMaxGramWork = 4e9;
 
-// The mean enters every frame's prediction the same way: it is stored about as finely as the
-// basis (2^-mean_shift ~ step, at most 8 bits below the grid).
-uint32_t mean_shift_for(double step) {
+// The frame average enters every frame's prediction the same way: it is stored about as
+// finely as the basis (2^-mean_shift ~ step, at most 8 bits below the grid). A frame anchor's
+// values are grid integers, exact at shift 0.
+uint32_t mean_shift_for(const GridComponents& pca, double step) {
+  if (pca.anchor != kMeanAnchor) return 0;
   return uint32_t(std::clamp(std::lround(-std::log2(step)), 0L, 8L));
 }
 
@@ -66,6 +68,7 @@ std::vector<double> frame_bits(const Model& m, const std::vector<int32_t>& q, co
 
 struct Candidate {
   LowRankModel model;
+  const GridComponents* pca = nullptr;
   double basis_step = 0;
   double saved_bytes = 0;    // estimated residual bytes saved
   double section_bytes = 0;  // the LRNK section's raw bytes
@@ -140,8 +143,25 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   if (!decode_residuals(*model, &q_without, error, {}, &plan_without)) return false;
   const std::vector<double> bits_without = frame_bits(*model, q_without, plan_without, {});
 
-  const GridComponents pca = grid_components(rounded, F, n, std::min<uint32_t>(kMaxLowRankComponents, F - 1));
-  if (pca.weights.empty()) return true;
+  // Two anchors, each screened over every count: the frame average, the classic centre, and
+  // the first frame, often the cleanest shape of an animation (a rest pose, modelled or
+  // generated, whose regular mesh codes in far fewer bytes than the average's blur of poses),
+  // at the price of components that must also span the average's offset from it. At 1e-3
+  // the first frame took the neck from 7,708 to 6,765 bytes and cantilever 1,933 -> 1,712;
+  // alone it lost on the sheet (57,351 -> 58,618), hence the screening of both. The first
+  // frame is screened only when it codes smaller than the rounded average: its shape is its
+  // one advantage, and on the corpus-ext sequences it has none (their modelled meshes are
+  // no cleaner than the average), where its screening tripled the time of 5-frame encodes.
+  const uint32_t max_components = std::min<uint32_t>(kMaxLowRankComponents, F - 1);
+  std::vector<GridComponents> pcas;
+  pcas.push_back(grid_components(rounded, F, n, max_components, kMeanAnchor));
+  if (options.first_frame_anchor && !pcas[0].mean.empty()) {
+    std::vector<int32_t> average(n);
+    for (size_t i = 0; i < n; ++i) average[i] = int32_t(std::lround(pcas[0].mean[i]));
+    const std::vector<int32_t> first(rounded.begin(), rounded.begin() + std::ptrdiff_t(n));
+    if (anchor_bytes(*model, first, options.threads) < anchor_bytes(*model, average, options.threads))
+      pcas.push_back(grid_components(rounded, F, n, max_components, 0));
+  }
   // Screening: the Model predictor alone, time order, on a sample of the frames, against
   // today's bits of the same frames. A model whose section alone outweighs today's residual
   // payload cannot pay and is skipped.
@@ -153,10 +173,10 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   const FrameSample sample = sample_frames(*model, frames, rounded, ((F + kScreenFrames - 1) / kScreenFrames) | 1);
   const double sample_scale = double(F) / double(sample.frames.size());
   std::vector<Candidate> candidates;
-  auto try_candidate = [&](uint32_t K, double step, bool* screened) {
+  auto try_candidate = [&](const GridComponents& pca, uint32_t K, double step, bool* screened) {
     *screened = false;
     Model trial = *model;
-    if (!quantize_low_rank(pca, K, step, mean_shift_for(step), options.threads, &trial, &rounded)) return true;
+    if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), options.threads, &trial, &rounded)) return true;
     const double section = double(low_rank_bytes(trial).size());
     if (!forced && section >= double(model->residual.payload.size())) return true;
     std::vector<int32_t> prediction, sampled, q = sample.rounded;
@@ -171,63 +191,72 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     double saved = 0;
     for (size_t j = 0; j < sample.frames.size(); ++j)
       saved += std::max(0.0, bits_without[sample.frames[j]] - bits[j]) / 8 * sample_scale;
-    candidates.push_back({std::move(trial.low_rank), step, saved, section, saved - section});
+    candidates.push_back({std::move(trial.low_rank), &pca, step, saved, section, saved - section});
     ++rep.screened;
     *screened = true;
     return true;
   };
-  const uint32_t available = uint32_t(pca.weights.size());
-  std::vector<uint32_t> counts;
-  if (forced) counts.push_back(std::min(uint32_t(options.components), available));
-  for (uint32_t K : kComponentCounts)
-    if (!forced && K <= available) counts.push_back(K);
-  double best_net = -HUGE_VAL;
-  int worse = 0;
-  for (uint32_t K : counts) {
-    if (worse >= kPatience) break;
-    bool screened = false;
-    if (!try_candidate(K, kFirstStep, &screened)) return false;
-    if (!screened) break;  // larger counts cost more still
-    if (candidates.back().net_bytes > best_net) {
-      best_net = candidates.back().net_bytes;
-      worse = 0;
-    } else {
-      ++worse;
+  // Every step below ranks the candidates of one anchor only.
+  auto best_of = [&](const GridComponents* pca, bool by_ratio) {
+    // by_ratio: saved bytes per section byte instead of net bytes.
+    const Candidate* best = nullptr;
+    for (const Candidate& c : candidates) {
+      if (c.pca != pca) continue;
+      if (!best || (by_ratio ? c.saved_bytes * best->section_bytes > best->saved_bytes * c.section_bytes
+                             : c.net_bytes > best->net_bytes))
+        best = &c;
     }
-  }
-  auto by_net = [](const Candidate& a, const Candidate& b) { return a.net_bytes < b.net_bytes; };
-  // Other steps for the best count, unless even the coarsest could not pay: a coarser basis
-  // saves less, and its section shrinks by about the step ratio at most. When no count
-  // pays at the first step, the one that comes closest relative to its section: a coarser
-  // step may make it pay (the sheet at 1e-3, grid 4x: K = 48 at step 0.4).
-  auto by_ratio = [](const Candidate& a, const Candidate& b) {
-    return a.saved_bytes * b.section_bytes < b.saved_bytes * a.section_bytes;
+    return best;
   };
-  auto best_it = std::max_element(candidates.begin(), candidates.end(), by_net);
-  if (best_it != candidates.end() && best_it->net_bytes <= 0)
-    best_it = std::max_element(candidates.begin(), candidates.end(), by_ratio);
-  const bool refine = best_it != candidates.end() &&
-                      best_it->saved_bytes > kFirstStep / kOtherSteps[std::size(kOtherSteps) - 1] * best_it->section_bytes;
-  const uint32_t refine_count = refine ? best_it->model.components : 0;
-  for (double step : kOtherSteps) {
-    bool screened = false;
-    if (refine && !try_candidate(refine_count, step, &screened)) return false;
-  }
-  // Counts between the screened ones, halfway to the best one's screened neighbours, at the
-  // best one's step: near its best the net saving is smooth enough in K for that to find
-  // what the list misses (blob at 1e-3: K = 20 between 16 and 24, 14,028 -> 13,308 bytes).
-  // After the step search, so that a count found here competes at a refined step, not the
-  // first one. Once: a second halving (tried with the midpoints at the first step) lost on
-  // the blob, its estimate preferring K = 18, whose full encode was larger (13,568 bytes),
-  // and only the best estimate is encoded.
-  const auto best_count = std::max_element(candidates.begin(), candidates.end(), by_net);
-  if (!forced && best_count != candidates.end() && best_count->net_bytes > 0) {
+  auto screen_anchor = [&](const GridComponents& pca) {
+    const uint32_t available = uint32_t(pca.weights.size());
+    std::vector<uint32_t> counts;
+    if (forced && available > 0) counts.push_back(std::min(uint32_t(options.components), available));
+    for (uint32_t K : kComponentCounts)
+      if (!forced && K <= available) counts.push_back(K);
+    double best_net = -HUGE_VAL;
+    int worse = 0;
+    for (uint32_t K : counts) {
+      if (worse >= kPatience) break;
+      bool screened = false;
+      if (!try_candidate(pca, K, kFirstStep, &screened)) return false;
+      if (!screened) break;  // larger counts cost more still
+      if (candidates.back().net_bytes > best_net) {
+        best_net = candidates.back().net_bytes;
+        worse = 0;
+      } else {
+        ++worse;
+      }
+    }
+    // Other steps for the best count, unless even the coarsest could not pay: a coarser basis
+    // saves less, and its section shrinks by about the step ratio at most. When no count
+    // pays at the first step, the one that comes closest relative to its section: a coarser
+    // step may make it pay (the sheet at 1e-3, grid 4x: K = 48 at step 0.4).
+    const Candidate* first = best_of(&pca, false);
+    if (first && first->net_bytes <= 0) first = best_of(&pca, true);
+    if (first && first->saved_bytes > kFirstStep / kOtherSteps[std::size(kOtherSteps) - 1] * first->section_bytes) {
+      const uint32_t K = first->model.components;  // try_candidate may move the candidates
+      for (double step : kOtherSteps) {
+        bool screened = false;
+        if (!try_candidate(pca, K, step, &screened)) return false;
+      }
+    }
+    // Counts between the screened ones, halfway to the best one's screened neighbours, at the
+    // best one's step: near its best the net saving is smooth enough in K for that to find
+    // what the list misses (blob at 1e-3: K = 20 between 16 and 24, 14,028 -> 13,308 bytes).
+    // After the step search, so that a count found here competes at a refined step, not the
+    // first one. Once: a second halving (tried with the midpoints at the first step) lost on
+    // the blob, its estimate preferring K = 18, whose full encode was larger (13,568 bytes),
+    // and only the best estimate is encoded.
+    const Candidate* best = best_of(&pca, false);
+    if (forced || !best || best->net_bytes <= 0) return true;
     std::vector<uint32_t> screened_counts;
-    for (const Candidate& c : candidates) screened_counts.push_back(c.model.components);
+    for (const Candidate& c : candidates)
+      if (c.pca == &pca) screened_counts.push_back(c.model.components);
     std::sort(screened_counts.begin(), screened_counts.end());
     screened_counts.erase(std::unique(screened_counts.begin(), screened_counts.end()), screened_counts.end());
-    const uint32_t K = best_count->model.components;
-    const double step = best_count->basis_step;  // try_candidate may move the candidates
+    const uint32_t K = best->model.components;
+    const double step = best->basis_step;
     const auto at = std::find(screened_counts.begin(), screened_counts.end(), K);
     std::vector<uint32_t> between;
     if (at != screened_counts.begin()) between.push_back((*(at - 1) + K) / 2);
@@ -235,10 +264,13 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     for (uint32_t mid : between) {
       bool screened = false;
       if (!std::binary_search(screened_counts.begin(), screened_counts.end(), mid) && mid <= available &&
-          !try_candidate(mid, step, &screened))
+          !try_candidate(pca, mid, step, &screened))
         return false;
     }
-  }
+    return true;
+  };
+  for (const GridComponents& pca : pcas)
+    if (!screen_anchor(pca)) return false;
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.net_bytes > b.net_bytes; });
 
@@ -251,13 +283,17 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   uint64_t best = forced ? UINT64_MAX : rep.bytes_without;
   Model best_model;
   const bool cheap = double(F) * model->meta.vertex_count <= kCheapTrial;
-  std::vector<uint32_t> tried_counts;
+  // Trials per anchor: the estimate ranks candidates of one anchor well enough, but not
+  // the two anchors against each other (rope-small at 1e-3: it preferred the frame
+  // average's best, 28,152 bytes, to the first frame's, 26,209).
+  std::vector<std::pair<const GridComponents*, uint32_t>> tried;  // anchor, count
   for (const Candidate& c : candidates) {
-    if (rep.trials >= options.max_trials) break;
+    const auto same_anchor = [&](const std::pair<const GridComponents*, uint32_t>& t) { return t.first == c.pca; };
+    if (uint32_t(std::count_if(tried.begin(), tried.end(), same_anchor)) >= options.max_trials) continue;
     if (!forced && c.saved_bytes <= (cheap ? kCheapTrialSavingFactor : kTrialSavingFactor) * c.section_bytes) continue;
     // A second trial of the same count at another step mostly repeats the first's error.
-    if (std::find(tried_counts.begin(), tried_counts.end(), c.model.components) != tried_counts.end()) continue;
-    tried_counts.push_back(c.model.components);
+    if (std::find(tried.begin(), tried.end(), std::make_pair(c.pca, c.model.components)) != tried.end()) continue;
+    tried.emplace_back(c.pca, c.model.components);
     Model trial = *model;
     trial.low_rank = c.model;
     if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, error))

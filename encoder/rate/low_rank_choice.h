@@ -22,6 +22,8 @@ struct LowRankChoiceOptions {
   // sheet at 1e-3, and the first three encode to the same bytes at 1e-2 and 1e-4 without it,
   // 13-30 % faster.
   uint32_t max_trials = 1;
+  // Also screen components around the first frame, besides around the frame average.
+  bool first_frame_anchor = true;
   int threads = 0;  // 0: all cores; the result never depends on it
 };
 
