@@ -52,6 +52,33 @@ Animation bending_sheet(uint32_t W, uint32_t H, uint32_t F) {
   return anim;
 }
 
+// The 12 x 9 bending sheet's 24 frames on a grid of 2e-4 (values q, frame-major), and a
+// model with its counts and faces.
+struct SheetOnGrid {
+  Model model;
+  std::vector<int32_t> q;
+  size_t n = 0;  // values per frame
+};
+SheetOnGrid sheet_on_grid() {
+  const Animation anim = bending_sheet(12, 9, 24);
+  SheetOnGrid s;
+  s.n = size_t(anim.vertex_count) * 3;
+  for (const auto& frame : anim.frames)
+    for (float x : frame) s.q.push_back(int32_t(std::lround((x + 1.0) / 2e-4)));
+  s.model.meta.vertex_count = anim.vertex_count;
+  s.model.meta.frame_count = uint32_t(anim.frames.size());
+  s.model.faces = anim.faces;
+  return s;
+}
+
+// The Model predictor's grid values of every frame of m (empty on failure).
+std::vector<int32_t> grid_prediction(const Model& m) {
+  std::vector<int32_t> prediction;
+  std::string err;
+  EXPECT_TRUE(model_grid_prediction(m, UINT64_MAX, &prediction, &err)) << err;
+  return prediction;
+}
+
 std::vector<uint8_t> encode(const Animation& anim, int low_rank, EncodeReport* rep, bool first_frame_anchor = true) {
   EncodeOptions o;
   o.tolerance = 1e-3;
@@ -122,27 +149,17 @@ std::vector<uint8_t> low_rank_payload(const std::vector<uint8_t>& bytes) {
 // values) must predict the grid values closer than the PCA weights do (here about 1 %: on a
 // rank-3 animation the rounding is noise, which 3 coefficients can hardly follow).
 TEST(LowRank, CoefficientsRefittedToTheRoundedBasisPredictCloser) {
-  const Animation anim = bending_sheet(12, 9, 24);
-  const uint32_t V = anim.vertex_count, F = uint32_t(anim.frames.size());
-  const size_t n = size_t(V) * 3;
-  const double step = 2e-4;
-  std::vector<int32_t> q;
-  for (const auto& frame : anim.frames)
-    for (float x : frame) q.push_back(int32_t(std::lround((x + 1.0) / step)));
-  Model m;
-  m.meta.vertex_count = V;
-  m.meta.frame_count = F;
-  m.faces = anim.faces;
-  const GridComponents pca = grid_components(q, F, n, 3);
+  const SheetOnGrid sheet = sheet_on_grid();
+  const std::vector<int32_t>& q = sheet.q;
+  const GridComponents pca = grid_components(q, sheet.model.meta.frame_count, sheet.n, 3);
   ASSERT_EQ(pca.weights.size(), 3u);
   for (double basis_step : {1.0, 4.0}) {
     double squared[2] = {0, 0};
     for (int refit = 0; refit < 2; ++refit) {
-      Model trial = m;
+      Model trial = sheet.model;
       ASSERT_TRUE(quantize_low_rank(pca, 3, basis_step, 0, 1, &trial, refit ? &q : nullptr));
-      std::vector<int32_t> prediction;
-      std::string err;
-      ASSERT_TRUE(model_grid_prediction(trial, UINT64_MAX, &prediction, &err)) << err;
+      const std::vector<int32_t> prediction = grid_prediction(trial);
+      ASSERT_EQ(prediction.size(), q.size());
       for (size_t i = 0; i < q.size(); ++i) squared[refit] += std::pow(double(prediction[i]) - q[i], 2);
     }
     EXPECT_LT(squared[1], squared[0]) << "basis step " << basis_step;
@@ -153,28 +170,19 @@ TEST(LowRank, CoefficientsRefittedToTheRoundedBasisPredictCloser) {
 // mean: its prediction is exact, and the other frames are predicted as closely as around the
 // frame average, since both span the same motion here.
 TEST(LowRank, AFirstFrameAnchorPredictsThatFrameExactly) {
-  const Animation anim = bending_sheet(12, 9, 24);
-  const uint32_t V = anim.vertex_count, F = uint32_t(anim.frames.size());
-  const size_t n = size_t(V) * 3;
-  std::vector<int32_t> q;
-  for (const auto& frame : anim.frames)
-    for (float x : frame) q.push_back(int32_t(std::lround((x + 1.0) / 2e-4)));
-  Model m;
-  m.meta.vertex_count = V;
-  m.meta.frame_count = F;
-  m.faces = anim.faces;
+  const SheetOnGrid sheet = sheet_on_grid();
+  const std::vector<int32_t>& q = sheet.q;
   double largest[2] = {0, 0};  // around the average, around frame 0
   for (uint32_t anchor : {kMeanAnchor, 0u}) {
-    const GridComponents pca = grid_components(q, F, n, 3, anchor);
+    const GridComponents pca = grid_components(q, sheet.model.meta.frame_count, sheet.n, 3, anchor);
     ASSERT_EQ(pca.anchor, anchor);
     ASSERT_EQ(pca.weights.size(), 3u);
-    Model trial = m;
+    Model trial = sheet.model;
     ASSERT_TRUE(quantize_low_rank(pca, 3, 1.0, 0, 1, &trial, &q));
-    std::vector<int32_t> prediction;
-    std::string err;
-    ASSERT_TRUE(model_grid_prediction(trial, UINT64_MAX, &prediction, &err)) << err;
+    const std::vector<int32_t> prediction = grid_prediction(trial);
+    ASSERT_EQ(prediction.size(), q.size());
     if (anchor == 0) {
-      for (size_t i = 0; i < n; ++i) ASSERT_EQ(prediction[i], q[i]) << i;
+      for (size_t i = 0; i < sheet.n; ++i) ASSERT_EQ(prediction[i], q[i]) << i;
     }
     for (size_t i = 0; i < q.size(); ++i)
       largest[anchor == 0] = std::max(largest[anchor == 0], std::fabs(double(prediction[i]) - q[i]));
@@ -186,16 +194,11 @@ TEST(LowRank, AFirstFrameAnchorPredictsThatFrameExactly) {
 // nearest integer), towards their spatial prediction; the mean is rounded, since its error
 // would repeat in every frame.
 TEST(LowRank, BasisValuesStayNearTheirAmplitudesAndTheMeanIsRounded) {
-  const Animation anim = bending_sheet(12, 9, 24);
-  const uint32_t V = anim.vertex_count, F = uint32_t(anim.frames.size());
-  const size_t n = size_t(V) * 3;
-  std::vector<int32_t> q;
-  for (const auto& frame : anim.frames)
-    for (float x : frame) q.push_back(int32_t(std::lround((x + 1.0) / 2e-4)));
-  Model m;
-  m.meta.vertex_count = V;
-  m.meta.frame_count = F;
-  m.faces = anim.faces;
+  const SheetOnGrid sheet = sheet_on_grid();
+  const std::vector<int32_t>& q = sheet.q;
+  Model m = sheet.model;
+  const uint32_t F = m.meta.frame_count;
+  const size_t n = sheet.n;
   const GridComponents pca = grid_components(q, F, n, 3);
   const double step = 0.5;
   ASSERT_TRUE(quantize_low_rank(pca, 3, step, 1, 1, &m, &q));
