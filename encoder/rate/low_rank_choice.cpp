@@ -150,8 +150,9 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   // the first frame took the neck from 7,708 to 6,765 bytes and cantilever 1,933 -> 1,712;
   // alone it lost on the sheet (57,351 -> 58,618), hence the screening of both. The first
   // frame is screened only when it codes smaller than the rounded average: its shape is its
-  // one advantage, and on the corpus-ext sequences it has none (their modelled meshes are
-  // no cleaner than the average), where its screening tripled the time of 5-frame encodes.
+  // one advantage, and on horse-gallop, chicken-crossing and crane it has none (their
+  // modelled meshes are no cleaner than the average), where its screening tripled the time of
+  // a 5-frame crane encode.
   const uint32_t max_components = std::min<uint32_t>(kMaxLowRankComponents, F - 1);
   std::vector<GridComponents> pcas;
   pcas.push_back(grid_components(rounded, F, n, max_components, kMeanAnchor));
