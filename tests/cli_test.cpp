@@ -130,8 +130,8 @@ TEST(Cli, EncodeDecodeInfoEndToEnd) {
   // Default: the same triangles with the same windings, in the face coder's order.
   EXPECT_EQ(canonical_triangles(back.faces), canonical_triangles(anim.faces));
   // Only the faces matter here: no low-rank screening (the first encode ran it).
-  ASSERT_EQ(run_cli("encode " + dir / "in" + " -o " + dir / "x.dcrv --exact-face-order --grid 1.5 --low-rank off").exit_code,
-            0);
+  const std::string faces_only = " -o " + dir / "x.dcrv --exact-face-order --grid 1.5 --low-rank off";
+  ASSERT_EQ(run_cli("encode " + dir / "in" + faces_only).exit_code, 0);
   ASSERT_EQ(run_cli("decode " + dir / "x.dcrv -o " + dir / "xout --frames 1").exit_code, 0);
   Animation exact;
   ASSERT_TRUE(read_frame_folder(dir / "xout", &exact, &err)) << err;
