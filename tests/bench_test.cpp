@@ -18,6 +18,7 @@
 #include "bench/report.h"
 #include "bench/runner.h"
 #include "encoder/metrics.h"
+#include "cli_util.h"
 #include "test_util.h"
 
 namespace dcurve::bench {

@@ -7,7 +7,11 @@
 #include <algorithm>
 #include <array>
 #include <fstream>
+#include <iterator>
+#include <string>
 
+#include "encoder/sim/simulation.h"
+#include "cli_util.h"
 #include "test_util.h"
 
 namespace dcurve::test {
@@ -37,6 +41,44 @@ TEST(Cli, MissingInputExitsOneAndNamesTheFile) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("/nonexistent/frames"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.dcrv"));
+}
+
+// `dcurve simulate`: usage errors exit 2, bad scenes exit 1 naming the file, and the frames
+// written carry the input surface (not the tet mesh).
+TEST(Cli, SimulateCommandLine) {
+  TempDir dir;
+  CommandResult r = run_cli("simulate --list");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.output.rfind("rope-small\n", 0), 0u) << r.output;
+  EXPECT_EQ(run_cli("simulate -o " + dir / "x").exit_code, 2);  // neither a file nor --scene
+  EXPECT_EQ(run_cli("simulate a.json --scene rope-small -o " + dir / "x").exit_code, 2);  // both
+  r = run_cli("simulate " + dir / "nope.json" + " -o " + dir / "x");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("nope.json"), std::string::npos) << r.output;
+  EXPECT_EQ(run_cli("simulate --scene nope -o " + dir / "x").exit_code, 1);
+  // An open surface (an octahedron missing a face) is bad input, not a crash.
+  std::ofstream(dir / "open.obj") << "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
+                                     "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\n";
+  std::ofstream(dir / "open.json") << R"({"mesh": {"file": "open.obj"}})";
+  r = run_cli("simulate " + dir / "open.json" + " -o " + dir / "x");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("open.obj"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("not closed"), std::string::npos) << r.output;
+  r = run_cli("simulate --scene cantilever --frames 3 -o " + dir / "out");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "out/frame_00000.obj"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "out/frame_00002.obj"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/frame_00003.obj"));
+  Animation anim;
+  std::string err;
+  ASSERT_TRUE(read_frame_folder(dir / "out", &anim, &err)) << err;
+  Scene s;
+  ASSERT_TRUE(builtin_scene("cantilever", &s, &err));
+  std::vector<double> xyz;
+  std::vector<uint32_t> faces;
+  ASSERT_TRUE(load_scene_surface(s, &xyz, &faces, &err));
+  EXPECT_EQ(anim.vertex_count, xyz.size() / 3);
+  EXPECT_EQ(anim.faces, faces);
 }
 
 TEST(Cli, MismatchedFramesAreRejectedWithoutPartialOutput) {
@@ -91,6 +133,33 @@ TEST(Cli, CorruptFileIsRejectedByDecodeAndInfo) {
     EXPECT_EQ(r.exit_code, 1) << sub;
     EXPECT_NE(r.output.find("bad.dcrv"), std::string::npos) << r.output;
   }
+}
+
+// `dcurve info` on the format's test vectors: the figures it prints are the recipe's, and a
+// damaged file is refused with the path in the message and exit status 1.
+TEST(Cli, InfoDescribesTestVectorsAndRefusesDamage) {
+  const std::string vectors = std::string(DCURVE_SOURCE_DIR) + "/format_spec/test_vectors/";
+  CommandResult r = run_cli("info --json " + vectors + "pde_segments.dcrv");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* key : {"\"vertices\":6", "\"frames\":9", "\"faces\":4", "\"pde8\":12", "\"pde32\":3",
+                          "\"version\":\"2.3\"", "\"mode\":\"displacement\""})
+    EXPECT_NE(r.output.find(key), std::string::npos) << key << " in " << r.output;
+  r = run_cli("info --json " + vectors + "sheet_traversal_faces.dcrv");
+  EXPECT_NE(r.output.find("\"face_layout\":\"traversal\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"faces\":72"), std::string::npos) << r.output;
+  r = run_cli("info --json " + vectors + "sheet_compact_faces.dcrv");
+  EXPECT_NE(r.output.find("\"face_layout\":\"compact\""), std::string::npos) << r.output;
+
+  std::ifstream in(vectors + "frames_only.dcrv", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(bytes.empty());
+  bytes[bytes.size() / 2] ^= 0x10;
+  TempDir dir;
+  std::ofstream(dir / "damaged.dcrv", std::ios::binary) << bytes;
+  r = run_cli("info " + dir / "damaged.dcrv");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find(dir / "damaged.dcrv"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("checksum"), std::string::npos) << r.output;
 }
 
 // Each triangle rotated to start at its smallest id (winding kept), then sorted.

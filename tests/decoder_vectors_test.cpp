@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
 
 #include "codec/container.h"
 #include "codec/faces.h"
@@ -222,47 +221,6 @@ TEST(TestVectors, DecoderReproducesTheExpectedPositions) {
         EXPECT_NEAR(xyz[i], e.xyz[i], 1e-5 * (1 + std::abs(e.xyz[i]))) << v.name << " t " << e.t << " value " << i;
     }
   }
-}
-
-}  // namespace
-}  // namespace dcurve
-
-namespace dcurve {
-namespace {
-
-std::string run(const std::string& cmd, int* status) {
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  for (size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  *status = pclose(p);
-  return out;
-}
-
-// `dcurve info` on the vectors: the figures it prints are the recipe's, and a damaged file is
-// refused with the path in the message and exit status 1.
-TEST(InfoCommand, DescribesTestVectorsAndRefusesDamage) {
-  int status = -1;
-  std::string out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "pde_segments.dcrv", &status);
-  EXPECT_EQ(status, 0);
-  for (const char* key : {"\"vertices\":6", "\"frames\":9", "\"faces\":4", "\"pde8\":12", "\"pde32\":3",
-                          "\"version\":\"2.3\"", "\"mode\":\"displacement\""})
-    EXPECT_NE(out.find(key), std::string::npos) << key << " in " << out;
-  out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "sheet_traversal_faces.dcrv", &status);
-  EXPECT_NE(out.find("\"face_layout\":\"traversal\""), std::string::npos) << out;
-  EXPECT_NE(out.find("\"faces\":72"), std::string::npos) << out;
-  out = run(std::string(DCURVE_CLI) + " info --json " + dir() + "sheet_compact_faces.dcrv", &status);
-  EXPECT_NE(out.find("\"face_layout\":\"compact\""), std::string::npos) << out;
-
-  std::vector<uint8_t> bytes = read_bytes(dir() + "frames_only.dcrv");
-  bytes[bytes.size() / 2] ^= 0x10;
-  const std::string damaged = std::string(DCURVE_BINARY_DIR) + "/damaged_test_vector.dcrv";
-  std::ofstream(damaged, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-  out = run(std::string(DCURVE_CLI) + " info " + damaged + " 2>&1", &status);
-  EXPECT_EQ(WEXITSTATUS(status), 1);
-  EXPECT_NE(out.find(damaged), std::string::npos) << out;
-  EXPECT_NE(out.find("checksum"), std::string::npos) << out;
 }
 
 }  // namespace

@@ -1,10 +1,8 @@
-// Scene files, the built-in corpus and the `dcurve simulate` command line.
+// Scene files and the built-in corpus (the `dcurve simulate` command line: cli_test).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "encoder/sim/scene.h"
 #include "encoder/sim/simulation.h"
@@ -22,13 +20,6 @@ fs::path scratch_dir(const std::string& name) {
 }
 
 void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 TEST(SimScene, BuiltinScenesParseAndRopeSizesFitTheirRoles) {
   const auto names = builtin_scene_names();
@@ -123,46 +114,6 @@ TEST(SimScene, BadSceneFilesNameTheFileAndTheProblem) {
   std::string err;
   EXPECT_FALSE(load_scene_file((dir / "absent.json").string(), &s, &err));
   EXPECT_NE(err.find("absent.json"), std::string::npos);
-}
-
-int run(const std::string& args, const fs::path& log) {
-  const std::string cmd = std::string(DCURVE_CLI) + " simulate " + args + " >" + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-TEST(SimScene, CommandLine) {
-  const fs::path dir = scratch_dir("cli");
-  const fs::path log = dir / "log.txt";
-  EXPECT_EQ(run("--list", log), 0);
-  EXPECT_EQ(read_text(log).rfind("rope-small\n", 0), 0u);
-  EXPECT_EQ(run("-o " + (dir / "x").string(), log), 2);  // neither a file nor --scene
-  EXPECT_EQ(run("a.json --scene rope-small -o " + (dir / "x").string(), log), 2);  // both
-  EXPECT_EQ(run((dir / "nope.json").string() + " -o " + (dir / "x").string(), log), 1);
-  EXPECT_NE(read_text(log).find("nope.json"), std::string::npos);
-  EXPECT_EQ(run("--scene nope -o " + (dir / "x").string(), log), 1);
-  // An open surface (an octahedron missing a face) is bad input, not a crash.
-  write_text(dir / "open.obj",
-             "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
-             "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\n");
-  write_text(dir / "open.json", R"({"mesh": {"file": "open.obj"}})");
-  EXPECT_EQ(run((dir / "open.json").string() + " -o " + (dir / "x").string(), log), 1);
-  EXPECT_NE(read_text(log).find("open.obj"), std::string::npos) << read_text(log);
-  EXPECT_NE(read_text(log).find("not closed"), std::string::npos) << read_text(log);
-  EXPECT_EQ(run("--scene cantilever --frames 3 -o " + (dir / "out").string(), log), 0) << read_text(log);
-  EXPECT_TRUE(fs::exists(dir / "out" / "frame_00000.obj"));
-  EXPECT_TRUE(fs::exists(dir / "out" / "frame_00002.obj"));
-  EXPECT_FALSE(fs::exists(dir / "out" / "frame_00003.obj"));
-  Animation anim;
-  std::string err;
-  ASSERT_TRUE(read_frame_folder((dir / "out").string(), &anim, &err)) << err;
-  Scene s;
-  ASSERT_TRUE(builtin_scene("cantilever", &s, &err));
-  std::vector<double> xyz;
-  std::vector<uint32_t> faces;
-  ASSERT_TRUE(load_scene_surface(s, &xyz, &faces, &err));
-  EXPECT_EQ(anim.vertex_count, xyz.size() / 3);  // the input surface, not the tet mesh
-  EXPECT_EQ(anim.faces, faces);
 }
 
 }  // namespace

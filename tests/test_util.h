@@ -1,36 +1,16 @@
-// Helpers shared by the tests: running the CLI, reading a few frames of the real corpus,
-// simulating a shortened built-in scene.
+// Helpers shared by the tests: reading a few frames of the real corpus, simulating a
+// shortened built-in scene, a scratch folder (running the CLI: cli_util.h).
 #pragma once
-#include <sys/wait.h>
-
-#include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "encoder/io/frames.h"
 #include "encoder/sim/scene.h"
 
 namespace dcurve::test {
-
-struct CommandResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-// Runs `args` with the dcurve CLI through the shell.
-inline CommandResult run_cli(const std::string& args) {
-  CommandResult r;
-  std::string cmd = std::string(DCURVE_CLI) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 inline std::string corpus_ext(const std::string& name) { return std::string(DCURVE_CORPUS_EXT) + "/" + name; }
 inline bool have_corpus_ext() { return std::filesystem::is_directory(DCURVE_CORPUS_EXT); }
