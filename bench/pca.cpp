@@ -122,7 +122,7 @@ bool unpack(const std::vector<uint8_t>& blob, size_t F, Quantized* q, std::strin
   return true;
 }
 
-constexpr size_t kHeaderBytes = 4 + 3 * 8 + 2 * 4;  // k, three steps, V and F
+constexpr size_t kPcaHeaderBytes = 4 + 3 * 8 + 2 * 4;  // k, three steps, V and F
 
 }  // namespace
 
@@ -198,7 +198,7 @@ bool bench_pca(const BenchContext& ctx, MethodResult* r, std::string* error) {
     return true;
   };
   if (!decode_all()) return false;
-  set_measures(ctx, decoded, best_blob.size() + kHeaderBytes + ctx.connectivity_charge, ctx.connectivity_charge, r);
+  set_measures(ctx, decoded, best_blob.size() + kPcaHeaderBytes + ctx.connectivity_charge, ctx.connectivity_charge, r);
   r->decode_vertices_per_second = decode_rate(ctx, decode_all);
   char buf[160];
   std::snprintf(buf, sizeof buf, "k=%u of %u, position step %.3g*E*L, zstd %d", best.k, K, best_scale,

@@ -12,7 +12,7 @@ namespace {
 
 enum class Layout : uint8_t { kFrameMajor = 0, kAxisPlanes = 1, kBytePlanes = 2 };
 const char* const kLayoutNames[] = {"frame-major xyz", "axis planes", "byte planes of axis planes"};
-constexpr size_t kHeaderBytes = 1 + 4 * 8 + 2 * 4;  // layout, origin xyz + step, V and F
+constexpr size_t kDeltaHeaderBytes = 1 + 4 * 8 + 2 * 4;  // layout, origin xyz + step, V and F
 
 // deltas[(f * V + v) * 3 + a] rearranged per `layout`, as bytes.
 std::vector<uint8_t> arrange(const std::vector<int32_t>& deltas, size_t VF, Layout layout) {
@@ -94,7 +94,7 @@ bool bench_quantized_delta(const BenchContext& ctx, MethodResult* r, std::string
     return true;
   };
   if (!decode_all()) return false;
-  set_measures(ctx, decoded, blob.size() + kHeaderBytes + ctx.connectivity_charge, ctx.connectivity_charge, r);
+  set_measures(ctx, decoded, blob.size() + kDeltaHeaderBytes + ctx.connectivity_charge, ctx.connectivity_charge, r);
   r->decode_vertices_per_second = decode_rate(ctx, decode_all);
   char buf[256];
   std::snprintf(buf, sizeof buf, "grid step %.4g (2EL/sqrt3), %s, zstd %d (payload B frame-major/axis/byte planes %s)",

@@ -14,7 +14,6 @@
 namespace dcurve {
 namespace {
 
-constexpr int64_t kMaxId = int64_t(UINT32_MAX) - 1;  // ids lie in [0, 2^32 - 2]
 // Recent border edges remembered per vertex and direction: on a manifold mesh the one that
 // closes a triangle is among the last few at that vertex; a bound keeps a hostile fan cheap.
 constexpr int kRing = 8;
@@ -154,7 +153,7 @@ struct DecodeIo {
 
 // Checks a coded id against what its flag claims and marks it seen.
 bool accept(Region& region, int64_t id, bool is_new, std::string* error) {
-  if (id < 0 || id > kMaxId) return fail(error, "face vertex id out of range");
+  if (id < 0 || id > kMaxVertexId) return fail(error, "face vertex id out of range");
   if (is_new == region.seen(uint32_t(id)))
     return fail(error, is_new ? "face vertex coded as new was already used" : "face vertex coded as known was never used");
   region.mark_seen(uint32_t(id));

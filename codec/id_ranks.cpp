@@ -4,9 +4,6 @@
 #include <bitset>
 
 namespace dcurve {
-namespace {
-constexpr int64_t kMaxId = int64_t(UINT32_MAX) - 1;
-}
 
 void IdRanks::Fenwick::add(size_t i) {
   for (size_t j = i + 1; j < sum.size(); j += j & (~j + 1)) ++sum[j];
@@ -55,12 +52,12 @@ uint64_t IdRanks::count_below(uint64_t y) const {
 
 uint64_t IdRanks::free_in(int64_t lo, int64_t hi) const {
   lo = std::max<int64_t>(lo, 0);
-  if (lo > std::min(hi, kMaxId)) return 0;
+  if (lo > std::min(hi, kMaxVertexId)) return 0;
   return free_from(lo, count_below(uint64_t(lo)), hi);
 }
 
 uint64_t IdRanks::free_from(int64_t first, uint64_t used_before_first, int64_t last) const {
-  last = std::min(last, kMaxId);
+  last = std::min(last, kMaxVertexId);
   if (first > last) return 0;
   return uint64_t(last - first + 1) - (count_below(uint64_t(last) + 1) - used_before_first);
 }
@@ -72,7 +69,7 @@ int64_t IdRanks::rank(int64_t from, uint32_t id) const {
 
 bool IdRanks::unrank(int64_t from, int64_t rank, uint32_t* id) const {
   if (rank == 0) {
-    if (from < 0 || from > kMaxId) return false;
+    if (from < 0 || from > kMaxVertexId) return false;
     *id = uint32_t(from);
     return true;
   }
@@ -81,10 +78,10 @@ bool IdRanks::unrank(int64_t from, int64_t rank, uint32_t* id) const {
   const uint64_t total = count_below(uint64_t(1) << 32);
   if (rank > 0) {
     const int64_t first = std::max<int64_t>(from + 1, 0);
-    if (first > kMaxId) return false;
+    if (first > kMaxVertexId) return false;
     const uint64_t used_before = count_below(uint64_t(first));
-    int64_t lo = first + rank - 1, hi = std::min(kMaxId, lo + int64_t(total - used_before));
-    if (lo > kMaxId || free_from(first, used_before, hi) < uint64_t(rank)) return false;
+    int64_t lo = first + rank - 1, hi = std::min(kMaxVertexId, lo + int64_t(total - used_before));
+    if (lo > kMaxVertexId || free_from(first, used_before, hi) < uint64_t(rank)) return false;
     while (lo < hi) {
       const int64_t mid = lo + (hi - lo) / 2;
       if (free_from(first, used_before, mid) >= uint64_t(rank)) hi = mid;
@@ -93,7 +90,7 @@ bool IdRanks::unrank(int64_t from, int64_t rank, uint32_t* id) const {
     *id = uint32_t(lo);
     return true;
   }
-  const int64_t last = std::min(from - 1, kMaxId);
+  const int64_t last = std::min(from - 1, kMaxVertexId);
   if (last < 0) return false;
   const uint64_t used_through_last = count_below(uint64_t(last) + 1);
   auto free_down = [&](int64_t y) { return uint64_t(last - y + 1) - (used_through_last - count_below(uint64_t(y))); };

@@ -12,6 +12,9 @@
 
 namespace dcurve {
 
+// The largest vertex id a file may hold: ids lie in [0, 2^32 - 2].
+constexpr int64_t kMaxVertexId = int64_t(UINT32_MAX) - 1;
+
 class IdRanks {
  public:
   IdRanks();

@@ -1,6 +1,7 @@
 // Curve extraction on every mesh of corpus-ext (static meshes and frame 0 of each sequence):
 // the partition invariant, u endpoints, and quality bars; prints the per-mesh report table
-// (run ./build/tests/curves_corpus_test to see it). Skips when the corpus is absent.
+// (run ./build/tests/dcurve_tests --gtest_filter='CurvesCorpus.*' to see it). Skips when the
+// corpus is absent.
 #include <gtest/gtest.h>
 
 #include <chrono>

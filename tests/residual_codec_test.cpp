@@ -17,24 +17,24 @@
 namespace dcurve {
 namespace {
 
-constexpr uint32_t kSide = 9;    // grid sheet of kSide x kSide vertices
-constexpr uint32_t kFrames = 10; // frames 6..9 repeat frames 0..3
+constexpr uint32_t kSheetSide = 9;     // grid sheet of kSheetSide x kSheetSide vertices
+constexpr uint32_t kSheetFrames = 10; // frames 6..9 repeat frames 0..3
 
 // A sheet that turns and ripples, then repeats its first poses.
 Animation sheet_animation() {
   Animation anim;
-  anim.vertex_count = kSide * kSide;
-  for (uint32_t i = 0; i + 1 < kSide; ++i)
-    for (uint32_t j = 0; j + 1 < kSide; ++j) {
-      const uint32_t a = i * kSide + j, b = a + 1, c = a + kSide, d = c + 1;
+  anim.vertex_count = kSheetSide * kSheetSide;
+  for (uint32_t i = 0; i + 1 < kSheetSide; ++i)
+    for (uint32_t j = 0; j + 1 < kSheetSide; ++j) {
+      const uint32_t a = i * kSheetSide + j, b = a + 1, c = a + kSheetSide, d = c + 1;
       anim.faces.insert(anim.faces.end(), {a, b, d, a, d, c});
     }
-  for (uint32_t f = 0; f < kFrames; ++f) {
+  for (uint32_t f = 0; f < kSheetFrames; ++f) {
     const double t = f < 6 ? f : f - 6;
     std::vector<float> xyz;
-    for (uint32_t i = 0; i < kSide; ++i)
-      for (uint32_t j = 0; j < kSide; ++j) {
-        const double x = double(j) / (kSide - 1), y = double(i) / (kSide - 1), ang = 0.05 * t;
+    for (uint32_t i = 0; i < kSheetSide; ++i)
+      for (uint32_t j = 0; j < kSheetSide; ++j) {
+        const double x = double(j) / (kSheetSide - 1), y = double(i) / (kSheetSide - 1), ang = 0.05 * t;
         xyz.push_back(float(std::cos(ang) * x - std::sin(ang) * y + 0.01 * t));
         xyz.push_back(float(std::sin(ang) * x + std::cos(ang) * y));
         xyz.push_back(float(0.1 * std::sin(3 * x + 0.5 * t) * y));
@@ -47,13 +47,13 @@ Animation sheet_animation() {
 // Rows of the sheet as curves, for the traversal without faces.
 Curves row_curves() {
   Curves c;
-  for (uint32_t v = 0; v < kSide * kSide; ++v) {
-    if (v % kSide == 0) c.offsets.push_back(v);
+  for (uint32_t v = 0; v < kSheetSide * kSheetSide; ++v) {
+    if (v % kSheetSide == 0) c.offsets.push_back(v);
     c.vertices.push_back(v);
-    c.u.push_back(float(v % kSide) / (kSide - 1));
+    c.u.push_back(float(v % kSheetSide) / (kSheetSide - 1));
   }
-  c.offsets.push_back(kSide * kSide);
-  c.closed.assign(kSide, 0);
+  c.offsets.push_back(kSheetSide * kSheetSide);
+  c.closed.assign(kSheetSide, 0);
   return c;
 }
 
@@ -129,7 +129,7 @@ TEST(ResidualCodec, EveryPredictorAloneRoundTripsWithinTolerance) {
           const LoopResult r = closed_loop(anim, tol, faces, po);
           EXPECT_EQ(r.decoded, r.chosen);
           // Linear needs two decoded frames: in time order frame 1 has only one.
-          for (size_t k = 2; k < kFrames; ++k) {
+          for (size_t k = 2; k < kSheetFrames; ++k) {
             const uint32_t f = r.plan.order[k];
             EXPECT_EQ(r.plan.frames[f].candidates[0][0].kind, c.kind) << "frame " << f;
             EXPECT_EQ(r.plan.frames[f].candidates[0][0].spatial, c.spatial) << "frame " << f;
@@ -146,7 +146,7 @@ TEST(ResidualCodec, ReferenceFramesFindTheRepeatedPoses) {
   const LoopResult r = closed_loop(anim, 1e-3, true, po);
   EXPECT_EQ(r.decoded, r.chosen);
   // Frames 7..9 repeat frames 1..3 exactly: the best reference is 6 frames back.
-  for (uint32_t f = 7; f < kFrames; ++f) EXPECT_EQ(r.plan.frames[f].candidates[0][0].r0, f - 6) << "frame " << f;
+  for (uint32_t f = 7; f < kSheetFrames; ++f) EXPECT_EQ(r.plan.frames[f].candidates[0][0].r0, f - 6) << "frame " << f;
 }
 
 TEST(ResidualCodec, ModelPredictorUsesTheSuppliedGridPrediction) {
@@ -162,7 +162,7 @@ TEST(ResidualCodec, ModelPredictorUsesTheSuppliedGridPrediction) {
   po.kinds = 1u << int(PredictorKind::Model);
   const LoopResult r = closed_loop(anim, 1e-3, true, po, ro);
   EXPECT_EQ(r.decoded, r.chosen);
-  for (uint32_t f = 0; f < kFrames; ++f) EXPECT_EQ(r.plan.frames[f].candidates[0][0].kind, PredictorKind::Model);
+  for (uint32_t f = 0; f < kSheetFrames; ++f) EXPECT_EQ(r.plan.frames[f].candidates[0][0].kind, PredictorKind::Model);
   for (double e : r.error.max_error_per_frame) EXPECT_LE(e, 1e-3);
 
   // Without the model values the payload cannot be decoded, and says why.
@@ -197,8 +197,8 @@ TEST(ResidualCodec, EncodeAnimationClosedLoopWithAndWithoutConnectivity) {
     auto dec = Decoder::open_memory(file.data(), file.size(), &err);
     ASSERT_TRUE(dec) << err;
     EXPECT_EQ(dec->face_count(), connectivity ? anim.faces.size() / 3 : 0u);
-    std::vector<std::vector<float>> frames(kFrames, std::vector<float>(size_t(anim.vertex_count) * 3));
-    for (uint32_t f = 0; f < kFrames; ++f) dec->evaluate_frame(f, frames[f].data());
+    std::vector<std::vector<float>> frames(kSheetFrames, std::vector<float>(size_t(anim.vertex_count) * 3));
+    for (uint32_t f = 0; f < kSheetFrames; ++f) dec->evaluate_frame(f, frames[f].data());
     for (double e : measure_error(anim, frames).max_error_per_frame) EXPECT_LE(e, 1e-3);
   }
 }
@@ -361,8 +361,8 @@ TEST(ResidualCodec, RandomClusterPlansRoundTripBitExactly) {
     for (int trial = 0; trial < 10; ++trial) {
       std::vector<int32_t> q;
       Model m = grid_model(anim, 1e-3, faces, &q);
-      const PredictorPlan plan = random_cluster_plan(anim.vertex_count, kFrames, rng);
-      ASSERT_TRUE(plan_is_valid(plan, kFrames, anim.vertex_count, {}));
+      const PredictorPlan plan = random_cluster_plan(anim.vertex_count, kSheetFrames, rng);
+      ASSERT_TRUE(plan_is_valid(plan, kSheetFrames, anim.vertex_count, {}));
       m.residual.payload = encode_residuals(m, q, &plan);
       ASSERT_FALSE(m.residual.payload.empty());
       std::vector<int32_t> out;
@@ -371,11 +371,12 @@ TEST(ResidualCodec, RandomClusterPlansRoundTripBitExactly) {
       EXPECT_EQ(out, q);
       PredictorPlan back;
       ASSERT_TRUE(decode_predictor_plan(m, &back, &err, {}, true)) << err;
-      for (uint32_t f = 0; f < kFrames; ++f) EXPECT_EQ(back.frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
+      for (uint32_t f = 0; f < kSheetFrames; ++f)
+        EXPECT_EQ(back.frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
       PredictorPlan with_values;  // the same plan from the decode that also gives the values
       ASSERT_TRUE(decode_residuals(m, &out, &err, {}, &with_values)) << err;
       EXPECT_EQ(out, q);
-      for (uint32_t f = 0; f < kFrames; ++f)
+      for (uint32_t f = 0; f < kSheetFrames; ++f)
         EXPECT_EQ(with_values.frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
       // A traversal the caller supplies (built once, reused) codes and decodes the same bytes.
       const Traversal trav = build_traversal(m);
@@ -402,7 +403,7 @@ TEST(ResidualCodec, InvalidCandidatesAndMotionMapsAreRejected) {
   std::mt19937 rng(5);
   std::vector<int32_t> q;
   Model m = grid_model(anim, 1e-3, true, &q);
-  PredictorPlan plan = random_cluster_plan(anim.vertex_count, kFrames, rng);
+  PredictorPlan plan = random_cluster_plan(anim.vertex_count, kSheetFrames, rng);
   // The encoder refuses maps out of the stored range and indices beyond the candidates.
   PredictorPlan bad = plan;
   bad.frames[3].transforms[0].row[1].t = kMaxMotionShift + 1;
