@@ -94,15 +94,6 @@ TEST(Cli, MismatchedFramesAreRejectedWithoutPartialOutput) {
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
 }
 
-// A unit square as two triangles in a text format, its second vertex written as `v1`.
-std::string square(const std::string& ext, const std::string& v1) {
-  const std::string v = "0 0 0\n" + v1 + "\n0 1 0\n1 1 0\n";
-  if (ext == "obj") return "v 0 0 0\nv " + v1 + "\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
-  if (ext == "off") return "OFF\n4 2 0\n" + v + "3 0 1 2\n3 1 3 2\n";
-  return "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-         "element face 2\nproperty list uchar int vertex_indices\nend_header\n" + v + "3 0 1 2\n3 1 3 2\n";
-}
-
 // OpenMesh's text readers do not fail on a value they cannot parse (the OBJ reader drops the
 // vertex, OFF and PLY read zeros from there on): the encoder must reject the file, naming
 // the line, instead of encoding a different mesh.
@@ -113,7 +104,7 @@ TEST(Cli, NonFiniteCoordinatesAreRejected) {
     std::ofstream(dir / ("frames/a." + ext)) << square(ext, "1 0 0");
     std::ofstream(dir / ("frames/b." + ext)) << square(ext, "1 0.5 0");
     EXPECT_EQ(run_cli("encode " + dir / "frames" + " -o " + dir / "good.dcrv").exit_code, 0) << ext;
-    const size_t line = ext == "obj" ? 2 : ext == "off" ? 4 : 11;
+    const size_t line = square_second_vertex_line(ext);
     for (const char* bad : {"nan 0 0", "1 inf 0", "1 0 1e999", "1e39 0 0", "1 x 0"}) {
       std::ofstream(dir / ("frames/b." + ext)) << square(ext, bad);
       CommandResult r = run_cli("encode " + dir / "frames" + " -o " + dir / "out.dcrv");

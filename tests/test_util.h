@@ -43,6 +43,18 @@ inline Animation simulate_builtin(const std::string& name, uint32_t frames) {
   return anim;
 }
 
+// A unit square as two triangles in a text format ("obj", "off" or "ply"), its second
+// vertex written as `v1` (three numbers, or a bad value to test the readers).
+inline std::string square(const std::string& ext, const std::string& v1) {
+  const std::string v = "0 0 0\n" + v1 + "\n0 1 0\n1 1 0\n";
+  if (ext == "obj") return "v 0 0 0\nv " + v1 + "\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+  if (ext == "off") return "OFF\n4 2 0\n" + v + "3 0 1 2\n3 1 3 2\n";
+  return "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+         "element face 2\nproperty list uchar int vertex_indices\nend_header\n" + v + "3 0 1 2\n3 1 3 2\n";
+}
+// The line of square()'s second vertex in its file, counted from 1.
+inline size_t square_second_vertex_line(const std::string& ext) { return ext == "obj" ? 2 : ext == "off" ? 4 : 11; }
+
 // A scratch folder removed when the object dies.
 struct TempDir {
   std::filesystem::path path;
