@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <vector>
 
 #include "cli/commands.h"
 #include "codec/container.h"
@@ -156,6 +157,14 @@ void print_text(const nlohmann::json& j) {
                   r["predictors"]["clusters"].dump().c_str(), r["predictors"]["cluster_size"].dump().c_str(),
                   r["predictors"]["candidates"].dump().c_str(), r["predictors"]["clustered_frames"].dump().c_str(),
                   r["predictors"]["cluster_kind"].dump().c_str(), r["predictors"]["motion_transforms"].dump().c_str());
+    if (!r["predictors"].is_null() && !r["predictors"]["frame_stream_bytes"].empty()) {
+      std::vector<uint32_t> bytes = r["predictors"]["frame_stream_bytes"].get<std::vector<uint32_t>>();
+      const uint32_t first = bytes[0];
+      std::sort(bytes.begin(), bytes.end());
+      std::printf("  residual stream bytes per frame: frame 0 %u; all frames min %u, median %u, max %u "
+                  "(--json lists them)\n",
+                  first, bytes.front(), bytes[bytes.size() / 2], bytes.back());
+    }
   }
   else
     std::printf("  no residual layer: positions come from the motion model alone\n");

@@ -52,6 +52,8 @@ class RangeDecoder {
   int decode(BitModel& m);
   // True when the decoder needed more bytes than the stream holds.
   bool overrun() const { return overrun_; }
+  // Bytes of the stream read so far (including the look-ahead of the code register).
+  size_t position() const { return pos_; }
   // After the last symbol of an intact stream: every byte read, and the code register
   // equal to the encoder's final low (the flush writes it out exactly), so corruption of
   // the tail is caught too.

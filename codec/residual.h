@@ -44,6 +44,10 @@ struct PredictorPlan {
   // a block (maps cost a dozen numbers, so they cover more vertices than a choice does).
   uint32_t motion_block = 1;
   std::vector<FramePredictors> frames;  // indexed by frame, not position
+  // Bytes of the range-coded stream each frame's values took, indexed by frame: filled by
+  // decoding (decode_residuals, decode_predictor_plan with clusters), empty otherwise. For
+  // reports: the coder reads a few bytes ahead, so a frame's count is within +-4 bytes.
+  std::vector<uint32_t> stream_bytes;
 };
 
 // Number of clusters of V vertices: ceil(V / cluster_size) (cluster_size >= 1).

@@ -78,6 +78,7 @@ struct LoopResult {
   PredictorPlan plan;
   ErrorStats error;
   size_t payload = 0;
+  std::vector<uint32_t> stream_bytes;  // per frame, as decoding measured them
 };
 
 // Chooses predictors and grid values, codes, writes and reads the container, decodes.
@@ -92,7 +93,9 @@ LoopResult closed_loop(const Animation& anim, double tol, bool faces, const Resi
   Model back;
   std::string err;
   EXPECT_TRUE(read_container(file.data(), file.size(), &back, &err)) << err;
-  EXPECT_TRUE(decode_residuals(back, &res.decoded, &err, ro)) << err;
+  PredictorPlan decoded_plan;
+  EXPECT_TRUE(decode_residuals(back, &res.decoded, &err, ro, &decoded_plan)) << err;
+  res.stream_bytes = decoded_plan.stream_bytes;
   std::vector<std::vector<float>> frames(anim.frames.size(), std::vector<float>(size_t(anim.vertex_count) * 3));
   for (size_t i = 0; i < res.decoded.size(); ++i)
     frames[i / frames[0].size()][i % frames[0].size()] = grid_to_model(back.residual, int(i % 3), res.decoded[i]);
@@ -147,6 +150,13 @@ TEST(ResidualCodec, ReferenceFramesFindTheRepeatedPoses) {
   EXPECT_EQ(r.decoded, r.chosen);
   // Frames 7..9 repeat frames 1..3 exactly: the best reference is 6 frames back.
   for (uint32_t f = 7; f < kSheetFrames; ++f) EXPECT_EQ(r.plan.frames[f].candidates[0][0].r0, f - 6) << "frame " << f;
+  // Decoding counts each frame's stream bytes: all of them fit in the payload, and an exact
+  // repeat costs a fraction of frame 0, coded from nothing.
+  ASSERT_EQ(r.stream_bytes.size(), size_t(kSheetFrames));
+  size_t sum = 0;
+  for (uint32_t b : r.stream_bytes) sum += b;
+  EXPECT_LE(sum, r.payload);
+  for (uint32_t f = 7; f < kSheetFrames; ++f) EXPECT_LT(4 * r.stream_bytes[f], r.stream_bytes[0]) << "frame " << f;
 }
 
 TEST(ResidualCodec, ModelPredictorUsesTheSuppliedGridPrediction) {

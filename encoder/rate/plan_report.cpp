@@ -72,7 +72,8 @@ nlohmann::json predictor_use(const Model& m) {
           {"candidates", candidates},
           {"clustered_frames", clustered_frames},
           {"cluster_kind", ck},
-          {"motion_transforms", motion_maps}};
+          {"motion_transforms", motion_maps},
+          {"frame_stream_bytes", plan.stream_bytes}};
 }
 
 std::string predictor_use_text(const nlohmann::json& use) {
