@@ -147,23 +147,23 @@ void print_text(const nlohmann::json& j) {
                   lr["components"].get<uint32_t>(), lr["shift"].get<uint32_t>(), lr["mean_shift"].get<uint32_t>(),
                   lr["coefficient_shifts"].empty() ? "none" : lr["coefficient_shifts"].dump().c_str(),
                   (unsigned long long)lr["basis_payload_bytes"].get<uint64_t>());
-    if (!r["predictors"].is_null())
+    const auto& p = r["predictors"];
+    if (!p.is_null()) {
       std::printf("  predictors per frame and axis: %s; spatial corrections: %s; %s coding order\n",
-                  r["predictors"]["kind"].dump().c_str(), r["predictors"]["spatial"].dump().c_str(),
-                  r["predictors"]["coding_order"].get<std::string>().c_str());
-    if (!r["predictors"].is_null())
+                  p["kind"].dump().c_str(), p["spatial"].dump().c_str(), p["coding_order"].get<std::string>().c_str());
       std::printf("  clusters: %s of up to %s vertices; %s candidates over %s frames with several; "
                   "per cluster and axis: %s; motion maps: %s\n",
-                  r["predictors"]["clusters"].dump().c_str(), r["predictors"]["cluster_size"].dump().c_str(),
-                  r["predictors"]["candidates"].dump().c_str(), r["predictors"]["clustered_frames"].dump().c_str(),
-                  r["predictors"]["cluster_kind"].dump().c_str(), r["predictors"]["motion_transforms"].dump().c_str());
-    if (!r["predictors"].is_null() && !r["predictors"]["frame_stream_bytes"].empty()) {
-      std::vector<uint32_t> bytes = r["predictors"]["frame_stream_bytes"].get<std::vector<uint32_t>>();
-      const uint32_t first = bytes[0];
-      std::sort(bytes.begin(), bytes.end());
-      std::printf("  residual stream bytes per frame: frame 0 %u; all frames min %u, median %u, max %u "
-                  "(--json lists them)\n",
-                  first, bytes.front(), bytes[bytes.size() / 2], bytes.back());
+                  p["clusters"].dump().c_str(), p["cluster_size"].dump().c_str(), p["candidates"].dump().c_str(),
+                  p["clustered_frames"].dump().c_str(), p["cluster_kind"].dump().c_str(),
+                  p["motion_transforms"].dump().c_str());
+      std::vector<uint32_t> bytes = p["frame_stream_bytes"].get<std::vector<uint32_t>>();
+      if (!bytes.empty()) {
+        const uint32_t first = bytes[0];
+        std::sort(bytes.begin(), bytes.end());
+        std::printf("  residual stream bytes per frame: frame 0 %u; all frames min %u, median %u, max %u "
+                    "(--json lists them)\n",
+                    first, bytes.front(), bytes[bytes.size() / 2], bytes.back());
+      }
     }
   }
   else

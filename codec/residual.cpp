@@ -71,9 +71,10 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
   std::vector<int8_t> res(stride * plan.order.size(), 0);
   const int8_t* previous = nullptr;  // residuals of the frame coded last
   GeometricWeightsCache geometry;
-  if (kDecode) plan.stream_bytes.assign(plan.order.size(), 0);
+  if constexpr (kDecode) plan.stream_bytes.assign(plan.order.size(), 0);
   for (uint32_t f : plan.order) {
-    if constexpr (kDecode) plan.stream_bytes[f] = uint32_t(coder.dec.position());
+    [[maybe_unused]] size_t frame_start = 0;
+    if constexpr (kDecode) frame_start = coder.dec.position();
     FramePredictors& fp = plan.frames[f];
     const uint32_t K = uint32_t(fp.candidates.size());
     base.resize(size_t(K) * stride);
@@ -175,14 +176,7 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
       }
     }
     previous = rf;
-  }
-  if constexpr (kDecode) {  // start positions -> bytes, in coding order
-    size_t end = coder.dec.position();
-    for (size_t i = plan.order.size(); i-- > 0;) {
-      const uint32_t f = plan.order[i], start = plan.stream_bytes[f];
-      plan.stream_bytes[f] = uint32_t(end - start);
-      end = start;
-    }
+    if constexpr (kDecode) plan.stream_bytes[f] = uint32_t(coder.dec.position() - frame_start);
   }
   return true;
 }

@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <array>
 #include <fstream>
-#include <iterator>
 #include <string>
 
+#include "encoder/io/files.h"
 #include "encoder/sim/simulation.h"
 #include "cli_util.h"
 #include "test_util.h"
@@ -141,12 +141,12 @@ TEST(Cli, InfoDescribesTestVectorsAndRefusesDamage) {
   r = run_cli("info --json " + vectors + "sheet_compact_faces.dcrv");
   EXPECT_NE(r.output.find("\"face_layout\":\"compact\""), std::string::npos) << r.output;
 
-  std::ifstream in(vectors + "frames_only.dcrv", std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ASSERT_FALSE(bytes.empty());
+  std::vector<uint8_t> bytes;
+  std::string err;
+  ASSERT_TRUE(read_file(vectors + "frames_only.dcrv", &bytes, &err)) << err;
   bytes[bytes.size() / 2] ^= 0x10;
   TempDir dir;
-  std::ofstream(dir / "damaged.dcrv", std::ios::binary) << bytes;
+  ASSERT_TRUE(write_file_atomic(dir / "damaged.dcrv", bytes.data(), bytes.size(), &err)) << err;
   r = run_cli("info " + dir / "damaged.dcrv");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find(dir / "damaged.dcrv"), std::string::npos) << r.output;

@@ -3,8 +3,6 @@
 // the exit codes the CLI maps them to).
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 
@@ -14,13 +12,6 @@
 namespace dcurve::test {
 namespace {
 
-namespace fs = std::filesystem;
-
-bool read_folder(const std::string& dir, Animation* anim, std::string* err) {
-  err->clear();
-  return read_frame_folder(dir, anim, err);
-}
-
 TEST(FramesIo, ReadsEveryFormatInNameOrder) {
   for (const std::string ext : {"obj", "off", "ply"}) {
     TempDir dir;
@@ -29,7 +20,7 @@ TEST(FramesIo, ReadsEveryFormatInNameOrder) {
     std::ofstream(dir / "notes.txt") << "not a frame";
     Animation anim;
     std::string err;
-    ASSERT_TRUE(read_folder(dir.path.string(), &anim, &err)) << ext << ": " << err;
+    ASSERT_TRUE(read_frame_folder(dir.path.string(), &anim, &err)) << ext << ": " << err;
     EXPECT_EQ(anim.vertex_count, 4u) << ext;
     ASSERT_EQ(anim.frames.size(), 2u) << ext;
     EXPECT_EQ(anim.frames[0][4], 0.0f) << ext;  // a.EXT first: vertex 1's y
@@ -46,7 +37,7 @@ TEST(FramesIo, NonFiniteOrUnparsableCoordinatesNameTheLine) {
       std::ofstream(dir / ("b." + ext)) << square(ext, bad);
       Animation anim;
       std::string err;
-      EXPECT_FALSE(read_folder(dir.path.string(), &anim, &err)) << ext << " " << bad;
+      EXPECT_FALSE(read_frame_folder(dir.path.string(), &anim, &err)) << ext << " " << bad;
       const std::string where = "b." + ext + ": line " + std::to_string(square_second_vertex_line(ext));
       EXPECT_NE(err.find(where), std::string::npos) << ext << " " << bad << ": " << err;
     }
@@ -57,23 +48,23 @@ TEST(FramesIo, InconsistentOrMissingFramesAreRefused) {
   TempDir dir;
   std::string err;
   Animation anim;
-  EXPECT_FALSE(read_folder(dir / "absent", &anim, &err));
+  EXPECT_FALSE(read_frame_folder(dir / "absent", &anim, &err));
   EXPECT_NE(err.find("absent"), std::string::npos) << err;
-  EXPECT_FALSE(read_folder(dir.path.string(), &anim, &err));  // no frames
+  EXPECT_FALSE(read_frame_folder(dir.path.string(), &anim, &err));  // no frames
   EXPECT_NE(err.find("no .obj"), std::string::npos) << err;
 
   std::ofstream(dir / "a.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   std::ofstream(dir / "b.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
-  EXPECT_FALSE(read_folder(dir.path.string(), &anim, &err));
+  EXPECT_FALSE(read_frame_folder(dir.path.string(), &anim, &err));
   EXPECT_NE(err.find("b.obj"), std::string::npos) << err;
   EXPECT_NE(err.find("vertices"), std::string::npos) << err;
 
   std::ofstream(dir / "b.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 3 2\n";  // same count, other face
-  EXPECT_FALSE(read_folder(dir.path.string(), &anim, &err));
+  EXPECT_FALSE(read_frame_folder(dir.path.string(), &anim, &err));
   EXPECT_NE(err.find("connectivity differs"), std::string::npos) << err;
 
   std::ofstream(dir / "b.obj") << "v 0 0 0\nv 1 0\nf 1 2 3\n";  // truncated
-  EXPECT_FALSE(read_folder(dir.path.string(), &anim, &err));
+  EXPECT_FALSE(read_frame_folder(dir.path.string(), &anim, &err));
   EXPECT_NE(err.find("b.obj"), std::string::npos) << err;
 }
 
