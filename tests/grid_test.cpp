@@ -253,6 +253,28 @@ void brute_force_snap(const ResidualLayer& layer, const float* x, double radius,
       }
 }
 
+// Snaps qv and compares with the search of every lattice point: admissible, the same score
+// and, among equal scores, the same distance.
+::testing::AssertionResult snap_matches_search(const ResidualLayer& layer, const float* x, double radius,
+                                               double weight, const int64_t* pred, int32_t* qv) {
+  double want_score, want_d2;
+  brute_force_snap(layer, x, radius, weight, pred, qv, &want_score, &want_d2);
+  snap_vertex(layer, x, radius, weight, pred, qv);
+  double got_d2 = 0;
+  int bits = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double d = double(grid_to_model(layer, a, qv[a])) - double(x[a]);
+    got_d2 += d * d;
+    bits += residual_cost(qv[a] - pred[a]);
+  }
+  const double got_score = bits + weight * got_d2 / (radius * radius);
+  if (got_d2 > radius * radius) return ::testing::AssertionFailure() << "outside the ball: " << got_d2;
+  if (got_score != want_score || got_d2 != want_d2)
+    return ::testing::AssertionFailure() << "score " << got_score << " distance^2 " << got_d2 << ", the search found "
+                                         << want_score << " and " << want_d2;
+  return ::testing::AssertionSuccess();
+}
+
 TEST(Snap, FindsWhatASearchOfEveryLatticePointFinds) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -271,20 +293,34 @@ TEST(Snap, FindsWhatASearchOfEveryLatticePointFinds) {
       pred[a] = int64_t(std::llround(x[a] + spread * (2 * u(rng) - 1)));
       qv[a] = int32_t(std::lround(x[a]));
     }
-    double want_score, want_d2;
-    brute_force_snap(layer, x, radius, weight, pred, qv, &want_score, &want_d2);
-    snap_vertex(layer, x, radius, weight, pred, qv);
-    const int64_t got[3] = {qv[0], qv[1], qv[2]};
-    double got_d2 = 0;
-    int bits = 0;
+    ASSERT_TRUE(snap_matches_search(layer, x, radius, weight, pred, qv)) << "trial " << trial;
+  }
+}
+
+// A grid finer than float32's resolution at the mesh's coordinates: several grid values decode
+// to the same float, so distances repeat in runs, and snapping must still find the best point.
+TEST(Snap, FindsTheBestPointWhereGridValuesDecodeToTheSameFloat) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 2000; ++trial) {
+    ResidualLayer layer;
+    layer.step = 2e-6;  // float32's spacing near 100 is 7.6e-6
+    layer.origin[0] = layer.origin[1] = layer.origin[2] = 100.0;
+    const double radius = layer.step * (0.8 + 12.0 * u(rng));
+    const double weight = trial % 3 == 0 ? 0.5 * u(rng) : 0.0;
+    float x[3];
+    int64_t pred[3];
+    int32_t qv[3];
     for (int a = 0; a < 3; ++a) {
-      const double d = double(grid_to_model(layer, a, got[a])) - double(x[a]);
-      got_d2 += d * d;
-      bits += residual_cost(got[a] - pred[a]);
+      const double g = 1000 + 50 * u(rng);  // in grid steps from the origin
+      x[a] = float(layer.origin[a] + g * layer.step);
+      pred[a] = int64_t(std::llround(g + 40 * (2 * u(rng) - 1)));
+      // Start where the encoder does, on an admissible point: one decoding exactly to x.
+      qv[a] = int32_t(std::lround(g)) - 8;
+      while (grid_to_model(layer, a, qv[a]) < x[a]) ++qv[a];
+      ASSERT_EQ(grid_to_model(layer, a, qv[a]), x[a]);
     }
-    ASSERT_LE(got_d2, radius * radius) << "trial " << trial;
-    ASSERT_DOUBLE_EQ(bits + weight * got_d2 / (radius * radius), want_score) << "trial " << trial;
-    ASSERT_DOUBLE_EQ(got_d2, want_d2) << "trial " << trial;
+    ASSERT_TRUE(snap_matches_search(layer, x, radius, weight, pred, qv)) << "trial " << trial;
   }
 }
 

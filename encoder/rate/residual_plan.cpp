@@ -43,10 +43,16 @@ static double distance2(const ResidualLayer& layer, const float* x, const int64_
   return d2;
 }
 
+// Signed distance from x to grid value k's decoded coordinate on axis a: non-decreasing in k,
+// since the decoder's conversion (grid_to_model) is monotonic.
+static double offset(const ResidualLayer& layer, int a, double xa, int64_t k) {
+  return double(grid_to_model(layer, a, k)) - xa;
+}
+
 static AxisRun axis_run(const ResidualLayer& layer, int a, float x, double radius) {
   const double r2 = radius * radius, xa = x;
   auto d2_of = [&](int64_t k) {
-    const double d = double(grid_to_model(layer, a, k)) - xa;
+    const double d = offset(layer, a, xa, k);
     return d * d;
   };
   // The admissible values form one run [lo, hi]: the decoded position is monotonic in k.
@@ -55,8 +61,23 @@ static AxisRun axis_run(const ResidualLayer& layer, int a, float x, double radiu
   run.hi = int64_t(std::ceil((xa + radius - layer.origin[a]) / layer.step));
   while (run.lo <= run.hi && d2_of(run.lo) > r2) ++run.lo;
   while (run.hi >= run.lo && d2_of(run.hi) > r2) --run.hi;
-  if (run.lo <= run.hi)
-    run.nearest = std::clamp<int64_t>(std::llround((xa - layer.origin[a]) / layer.step), run.lo, run.hi);
+  if (run.lo > run.hi) return run;
+  // The lowest of the values nearest x: the first whose offset is >= 0, or the first of the
+  // (float-rounded, so possibly repeated) offsets just below 0 when those are as near.
+  auto first_at_least = [&](int64_t l, int64_t h, double v) {
+    while (l <= h) {
+      const int64_t mid = l + (h - l) / 2;
+      if (offset(layer, a, xa, mid) >= v) h = mid - 1;
+      else l = mid + 1;
+    }
+    return l;
+  };
+  const int64_t above = first_at_least(run.lo, run.hi, 0.0);
+  run.nearest = above;
+  if (above > run.lo) {
+    const double below = offset(layer, a, xa, above - 1);
+    if (above > run.hi || below * below <= d2_of(above)) run.nearest = first_at_least(run.lo, above - 1, below);
+  }
   return run;
 }
 
@@ -93,49 +114,68 @@ void snap_vertex(const ResidualLayer& layer, const float* x, const AxisRun* runs
   // |value - prediction| (0, 1, 2..3, 4..7, ...). Within a band the value nearest the
   // input scores best (same bits, less distance) and keeps every other axis admissible, so
   // only one value per axis and band can win: a few per axis, instead of every lattice
-  // point of the ball, whose count grows with the cube of the grid refinement.
+  // point of the ball, whose count grows with the cube of the grid refinement. Fewer still:
+  // a value costing more bits than another of the axis and no nearer the input never wins
+  // (swapping it for the other keeps the point admissible and lowers the score), so only
+  // the bands from the prediction towards the nearest value count, each kept only when
+  // nearer than every cheaper one.
   struct Option {
     int bits;
     double d2;
     int64_t k;
   };
   // At most one option for "equal to pred" and one per exponent band.
-  std::array<Option, 66> options[3];
+  std::array<Option, 64> options[3];
   size_t count[3] = {0, 0, 0};
   int64_t best[3];
   for (int a = 0; a < 3; ++a) {
     const double xa = x[a];
     auto d2_of = [&](int64_t k) {
-      const double d = double(grid_to_model(layer, a, k)) - xa;
+      const double d = offset(layer, a, xa, k);
       return d * d;
     };
     const int64_t lo = runs[a].lo, hi = runs[a].hi, nearest = runs[a].nearest;
     best[a] = qv[a];
     if (lo > hi) continue;
-    // The value of [l, h] nearest the input, the lowest of equally near ones (|d| falls,
-    // then rises, with k; rounding to float can make runs of equal distances).
-    auto nearest_in = [&](int64_t l, int64_t h, int bits) {
-      int64_t k = std::clamp(nearest, l, h);
-      double d2 = d2_of(k);
-      for (double e; k > l && (e = d2_of(k - 1)) <= d2; --k) d2 = e;
-      for (double e; k < h && (e = d2_of(k + 1)) < d2; ++k) d2 = e;
-      return Option{bits, d2, k};
+    // The value of [l, h] (within the run) nearest the input, the lowest of equally near
+    // ones: |offset| does not rise up to `nearest` and does not fall after it.
+    auto nearest_in = [&](int64_t l, int64_t h) {
+      if (nearest < l) return l;
+      if (nearest <= h) return nearest;
+      const double dh = offset(layer, a, xa, h);
+      while (h > l && offset(layer, a, xa, h - 1) >= dh) --h;
+      return h;
     };
     const int64_t p = pred[a];
     Option* o = options[a].data();
-    if (lo <= p && p <= hi) o[count[a]++] = {0, d2_of(p), p};
-    // Band e: |k - p| in [2^e, 2^(e+1) - 1], all costing residual_cost = 2 + 2e. The side
-    // below p goes first, so that of equally near values the lower wins.
-    for (int e = 0; e < 62 && (p + (int64_t(1) << e) <= hi || p - (int64_t(1) << e) >= lo); ++e) {
-      const int64_t m1 = int64_t(1) << e, m2 = (int64_t(2) << e) - 1;
-      Option band{-1, 0, 0};
-      for (const auto& [l, h] : {std::pair(std::max(lo, p - m2), std::min(hi, p - m1)),
-                                 std::pair(std::max(lo, p + m1), std::min(hi, p + m2))}) {
-        if (l > h) continue;
-        const Option c = nearest_in(l, h, 2 + 2 * e);
-        if (band.bits < 0 || c.d2 < band.d2) band = c;
+    double nearer_than = HUGE_VAL;
+    if (lo <= p && p <= hi) {
+      nearer_than = d2_of(p);
+      o[count[a]++] = {0, nearer_than, p};
+    }
+    if (p == nearest) continue;
+    // Band e: |k - p| in [2^e, 2^(e+1) - 1], all costing residual_cost = 2 + 2e, on the
+    // side of the nearest value, up to the band holding it. Unsigned: p may lie far
+    // outside the run.
+    const bool up = nearest > p;
+    const uint64_t reach = up ? uint64_t(nearest) - uint64_t(p) : uint64_t(p) - uint64_t(nearest);
+    for (int e = 0; e < 63 && (uint64_t(1) << e) <= reach; ++e) {
+      const uint64_t m1 = uint64_t(1) << e, m2 = (uint64_t(2) << e) - 1;
+      int64_t l, h;
+      if (up) {
+        l = std::max(lo, int64_t(uint64_t(p) + m1));
+        h = uint64_t(hi) - uint64_t(p) <= m2 ? hi : int64_t(uint64_t(p) + m2);
+      } else {
+        h = std::min(hi, int64_t(uint64_t(p) - m1));
+        l = uint64_t(p) - uint64_t(lo) <= m2 ? lo : int64_t(uint64_t(p) - m2);
       }
-      if (band.bits >= 0) o[count[a]++] = band;
+      if (l > h) continue;
+      const int64_t k = nearest_in(l, h);
+      const double d2 = d2_of(k);
+      if (d2 < nearer_than) {
+        nearer_than = d2;
+        o[count[a]++] = {2 + 2 * e, d2, k};
+      }
     }
   }
   double best_d2 = distance2(layer, x, best), best_score = score(best, best_d2);
