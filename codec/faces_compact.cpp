@@ -33,11 +33,7 @@ constexpr int kIntContexts = kCtxFar + 3;
 constexpr int kSignOther = kPredictors * 9;
 constexpr int kSignContexts = kSignOther + 1;
 
-int bit_length(uint64_t m) {
-  int n = 0;
-  for (; m; m >>= 1) ++n;
-  return n;
-}
+int bit_length(uint64_t m) { return m ? floor_log2(m) + 1 : 0; }
 uint64_t magnitude(int64_t d) { return d < 0 ? uint64_t(-d) : uint64_t(d); }
 uint64_t edge_key(uint32_t from, uint32_t to) { return uint64_t(from) << 32 | to; }
 

@@ -2,11 +2,6 @@
 
 namespace dcurve {
 namespace {
-int floor_log2(uint64_t m) {
-  int e = 0;
-  while (m >>= 1) ++e;
-  return e;
-}
 // Bit position i (counted from the top, 0-based) of the e mantissa bits uses the tree
 // model for the first two bits and one shared model below.
 template <class Coder, class Op>

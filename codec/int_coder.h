@@ -16,6 +16,18 @@ namespace dcurve {
 // covers any difference of int32 grid values and their predictions.
 constexpr int kMaxExponent = 40;
 
+// floor(log2(m)) for m >= 1, 0 for m = 0: a magnitude's exponent class. The encoder's rate
+// estimates call it per candidate value, so it uses the count-leading-zeros instruction.
+inline int floor_log2(uint64_t m) {
+#if defined(__GNUC__) || defined(__clang__)
+  return m ? 63 - __builtin_clzll(m) : 0;
+#else
+  int e = 0;
+  while (m >>= 1) ++e;
+  return e;
+#endif
+}
+
 class AdaptiveIntCoder {
  public:
   // contexts, sign_contexts: numbers of distinct context ids callers pass, >= 1 each.

@@ -243,9 +243,11 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
               snap_vertex(model.residual, input + size_t(v) * 3, &runs[size_t(v) * 3], radius, po.distance_weight, pred,
                           qv);
             uint8_t axis_max = 0;
+            int classes[3];
+            neighbour_classes(trav, pos, magnitude, classes);
             for (int a = 0; a < 3; ++a) {
               const int64_t r = int64_t(qv[a]) - pred[a];
-              const int ctx = neighbour_class(trav, pos, a, magnitude) * 3 + std::min<uint8_t>(axis_max, 2);
+              const int ctx = classes[a] * 3 + std::min<uint8_t>(axis_max, 2);
               const double c = table.cost(ctx, r);
               bits += c;
               per_axis[a] += c;

@@ -37,9 +37,9 @@ std::vector<AxisRun> axis_runs(const ResidualLayer& layer, const float* xyz, siz
 void snap_vertex(const ResidualLayer& layer, const float* x, const AxisRun* runs, double radius,
                  double distance_weight, const int64_t* pred, int32_t* qv);
 
-// Class (0..3, 4 for none) of the earlier neighbours' residual magnitudes (clamped, by
-// vertex and axis) of traversal position pos on axis.
-int neighbour_class(const Traversal& t, uint32_t pos, int axis, const std::vector<uint8_t>& magnitude);
+// Classes (0..3, 4 for none) of the earlier neighbours' residual magnitudes (clamped, by
+// vertex and axis) of traversal position pos, per axis.
+void neighbour_classes(const Traversal& t, uint32_t pos, const std::vector<uint8_t>& magnitude, int classes[3]);
 
 // Frame-wide candidate predictors for frame f given the decoded frames (decoded[r] != 0):
 // None, Reference and Linear to the nearest decoded frames, Reference to similar poses,

@@ -1,5 +1,6 @@
 #include "encoder/rate/residual_plan.h"
 
+#include "codec/int_coder.h"
 #include "encoder/parallel.h"
 #include "encoder/rate/cluster_plan.h"
 #include "encoder/rate/plan_steps.h"
@@ -16,21 +17,14 @@ namespace dcurve {
 
 // Estimated bits of a residual when choosing among admissible grid points: what an
 // adaptive exponent coder roughly pays.
-int residual_cost(int64_t r) {
-  if (r == 0) return 0;
-  uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
-  int e = 0;
-  while (m >>= 1) ++e;
-  return 2 + 2 * e;
-}
+static uint64_t magnitude_of(int64_t r) { return r < 0 ? 0 - uint64_t(r) : uint64_t(r); }
+
+int residual_cost(int64_t r) { return r == 0 ? 0 : 2 + 2 * floor_log2(magnitude_of(r)); }
 
 int residual_class(int64_t r, int* exponent) {
   *exponent = 0;
   if (r == 0) return 0;
-  uint64_t m = r < 0 ? uint64_t(-r) : uint64_t(r);
-  int e = 0;
-  while (m >>= 1) ++e;
-  *exponent = std::min(e, 40);
+  *exponent = std::min(floor_log2(magnitude_of(r)), kMaxExponent);
   return 1 + 2 * *exponent + (r < 0);
 }
 
@@ -214,13 +208,20 @@ void snap_vertex(const ResidualLayer& layer, const float* x, const AxisRun* runs
 
 // Class of the earlier neighbours' residual magnitudes on `axis` (0..3, 4 for none):
 // lets the estimate see that clustered residuals are cheaper to code than scattered ones.
-int neighbour_class(const Traversal& t, uint32_t pos, int axis, const std::vector<uint8_t>& magnitude) {
+void neighbour_classes(const Traversal& t, uint32_t pos, const std::vector<uint8_t>& magnitude, int classes[3]) {
   const uint32_t begin = t.nb_offsets[pos], end = t.nb_offsets[pos + 1];
-  if (begin == end) return 4;
-  uint32_t sum = 0;
-  for (uint32_t k = begin; k < end; ++k) sum += magnitude[size_t(t.nb[k]) * 3 + size_t(axis)];
-  const uint32_t mean = (sum + (end - begin) - 1) / (end - begin);
-  return int(std::min<uint32_t>(mean, 3));
+  if (begin == end) {
+    classes[0] = classes[1] = classes[2] = 4;
+    return;
+  }
+  uint32_t sum[3] = {0, 0, 0};
+  for (uint32_t k = begin; k < end; ++k) {
+    const uint8_t* m = &magnitude[size_t(t.nb[k]) * 3];
+    sum[0] += m[0];
+    sum[1] += m[1];
+    sum[2] += m[2];
+  }
+  for (int a = 0; a < 3; ++a) classes[a] = int(std::min<uint32_t>((sum[a] + (end - begin) - 1) / (end - begin), 3));
 }
 
 // Decoded frames most similar to frame f (sum of absolute grid differences on a sample
@@ -371,11 +372,13 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
           snap_vertex(model.residual, &frames[f][size_t(v) * 3], &runs[size_t(v) * 3], radius, po.distance_weight, pred,
                       qv);
         uint8_t axis_max = 0;
+        int classes[3];
+        neighbour_classes(trav, pos, magnitude, classes);
         for (int a = 0; a < 3; ++a) {
           const int64_t r = int64_t(qv[a]) - pred[a];
           const size_t i = size_t(pos) * 3 + size_t(a);
           residuals[i] = r;
-          contexts[i] = uint8_t(neighbour_class(trav, pos, a, magnitude) * 3 + std::min<uint8_t>(axis_max, 2));
+          contexts[i] = uint8_t(classes[a] * 3 + std::min<uint8_t>(axis_max, 2));
           magnitude[size_t(v) * 3 + size_t(a)] = uint8_t(std::min<int64_t>(r < 0 ? -r : r, 255));
           axis_max = std::max(axis_max, magnitude[size_t(v) * 3 + size_t(a)]);
         }
