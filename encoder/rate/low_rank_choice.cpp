@@ -242,6 +242,26 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
         if (!try_candidate(pca, K, step, &screened)) return false;
       }
     }
+    const Candidate* best = best_of(&pca, false);
+    if (forced || !best || best->net_bytes <= 0) return true;
+    // When the best count is the largest screened, the first step cut off the next ones
+    // (their section alone outweighed the payload) before the net saving was seen to fall:
+    // at the refined, coarser step they may pay, so they are screened at it, upwards while
+    // they are (the sheet at 1e-3, grid 8x: K = 56 coded 55,023 bytes, 48 57,351).
+    const bool cut_off = std::none_of(candidates.begin(), candidates.end(), [&](const Candidate& c) {
+      return c.pca == &pca && c.model.components > best->model.components;
+    });
+    if (cut_off) {
+      const uint32_t K = best->model.components;
+      const double step = best->basis_step;
+      for (uint32_t larger : kComponentCounts) {
+        if (larger <= K || larger > available) continue;
+        bool screened = false;
+        if (!try_candidate(pca, larger, step, &screened)) return false;
+        if (!screened) break;
+      }
+      best = best_of(&pca, false);
+    }
     // Counts between the screened ones, halfway to the best one's screened neighbours, at the
     // best one's step: near its best the net saving is smooth enough in K for that to find
     // what the list misses (blob at 1e-3: K = 20 between 16 and 24, 14,028 -> 13,308 bytes).
@@ -249,8 +269,6 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     // first one. Once: a second halving (tried with the midpoints at the first step) lost on
     // the blob, its estimate preferring K = 18, whose full encode was larger (13,568 bytes),
     // and only the best estimate is encoded.
-    const Candidate* best = best_of(&pca, false);
-    if (forced || !best || best->net_bytes <= 0) return true;
     std::vector<uint32_t> screened_counts;
     for (const Candidate& c : candidates)
       if (c.pca == &pca) screened_counts.push_back(c.model.components);
