@@ -34,7 +34,6 @@ constexpr int kSignOther = kPredictors * 9;
 constexpr int kSignContexts = kSignOther + 1;
 
 int bit_length(uint64_t m) { return m ? floor_log2(m) + 1 : 0; }
-uint64_t magnitude(int64_t d) { return d < 0 ? uint64_t(-d) : uint64_t(d); }
 uint64_t edge_key(uint32_t from, uint32_t to) { return uint64_t(from) << 32 | to; }
 
 // How far apart the ids of the gate's two vertices are: a gate between nearby ids tends to
@@ -171,11 +170,11 @@ class NewIds {
     const IdRanks& ids = region.ids();
     const int64_t p[kPredictors] = {std::max(a, b), std::min(a, b), int64_t(a) + int64_t(b) - int64_t(c), last_new_};
     int best = int(std::min_element(score_, score_ + kPredictors) - score_);
-    const int gap = gap_class(magnitude(int64_t(a) - int64_t(b)));
+    const int gap = gap_class(magnitude_of(int64_t(a) - int64_t(b)));
     const int free_gap = gap_class(ids.free_in(int64_t(std::min(a, b)) + 1, int64_t(std::max(a, b)) - 1));
     // Far apart gate ids: a new vertex is usually near one of them, rarely between.
     if (best < 2 && free_gap >= kSideGap) {
-      const bool use_min = !Io::kDecoding && magnitude(ids.rank(p[1], x)) < magnitude(ids.rank(p[0], x));
+      const bool use_min = !Io::kDecoding && magnitude_of(ids.rank(p[1], x)) < magnitude_of(ids.rank(p[0], x));
       best = io.bit(m.far_side[free_gap][b > a], use_min);
     }
     const int ctx = best * kGapClasses + gap;
@@ -186,7 +185,7 @@ class NewIds {
     for (int i = 0; i < kPredictors; ++i) ranks[i] = ids.rank(p[i], *out);
     if (!accept(region, *out, true, error)) return false;
     for (int i = 0; i < kPredictors; ++i)
-      score_[i] = score_[i] - (score_[i] >> 7) + 16 * uint32_t(bit_length(magnitude(ranks[i])));
+      score_[i] = score_[i] - (score_[i] >> 7) + 16 * uint32_t(bit_length(magnitude_of(ranks[i])));
     last_new_ = *out;
     last_rank_ = rank;
     return true;

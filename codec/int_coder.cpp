@@ -23,7 +23,7 @@ void AdaptiveIntCoder::encode(RangeEncoder& enc, int ctx, int sign_ctx, int64_t 
   enc.encode(c.zero, v == 0);
   if (v == 0) return;
   enc.encode(sign_[size_t(sign_ctx)], v < 0);
-  const uint64_t m = v < 0 ? uint64_t(-v) : uint64_t(v);
+  const uint64_t m = magnitude_of(v);
   const int e = floor_log2(m);
   for (int i = 0; i < e; ++i) enc.encode(c.exponent[size_t(i)], 1);
   if (e < kMaxExponent) enc.encode(c.exponent[size_t(e)], 0);

@@ -16,6 +16,9 @@ namespace dcurve {
 // covers any difference of int32 grid values and their predictions.
 constexpr int kMaxExponent = 40;
 
+// |v| as an unsigned value, exact for every int64 (INT64_MIN included).
+inline uint64_t magnitude_of(int64_t v) { return v < 0 ? 0 - uint64_t(v) : uint64_t(v); }
+
 // floor(log2(m)) for m >= 1, 0 for m = 0: a magnitude's exponent class. The encoder's rate
 // estimates call it per candidate value, so it uses the count-leading-zeros instruction.
 inline int floor_log2(uint64_t m) {

@@ -17,8 +17,6 @@ namespace dcurve {
 
 // Estimated bits of a residual when choosing among admissible grid points: what an
 // adaptive exponent coder roughly pays.
-static uint64_t magnitude_of(int64_t r) { return r < 0 ? 0 - uint64_t(r) : uint64_t(r); }
-
 int residual_cost(int64_t r) { return r == 0 ? 0 : 2 + 2 * floor_log2(magnitude_of(r)); }
 
 int residual_class(int64_t r, int* exponent) {
@@ -28,19 +26,19 @@ int residual_class(int64_t r, int* exponent) {
   return 1 + 2 * *exponent + (r < 0);
 }
 
-static double distance2(const ResidualLayer& layer, const float* x, const int64_t* k) {
-  double d2 = 0;
-  for (int a = 0; a < 3; ++a) {
-    const double d = double(grid_to_model(layer, a, k[a])) - double(x[a]);
-    d2 += d * d;
-  }
-  return d2;
-}
-
 // Signed distance from x to grid value k's decoded coordinate on axis a: non-decreasing in k,
 // since the decoder's conversion (grid_to_model) is monotonic.
 static double offset(const ResidualLayer& layer, int a, double xa, int64_t k) {
   return double(grid_to_model(layer, a, k)) - xa;
+}
+
+static double distance2(const ResidualLayer& layer, const float* x, const int64_t* k) {
+  double d2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double d = offset(layer, a, x[a], k[a]);
+    d2 += d * d;
+  }
+  return d2;
 }
 
 static AxisRun axis_run(const ResidualLayer& layer, int a, float x, double radius) {
@@ -206,8 +204,8 @@ void snap_vertex(const ResidualLayer& layer, const float* x, const AxisRun* runs
     if (best[a] >= INT32_MIN && best[a] <= INT32_MAX) qv[a] = int32_t(best[a]);
 }
 
-// Class of the earlier neighbours' residual magnitudes on `axis` (0..3, 4 for none):
-// lets the estimate see that clustered residuals are cheaper to code than scattered ones.
+// Classes of the earlier neighbours' residual magnitudes, per axis (0..3, 4 for none): let
+// the estimate see that clustered residuals are cheaper to code than scattered ones.
 void neighbour_classes(const Traversal& t, uint32_t pos, const std::vector<uint8_t>& magnitude, int classes[3]) {
   const uint32_t begin = t.nb_offsets[pos], end = t.nb_offsets[pos + 1];
   if (begin == end) {
