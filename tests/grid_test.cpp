@@ -2,7 +2,8 @@
 // the (refined) grid stays within the tolerance, a tolerance too small for the refined
 // grid's int32 range falls back to the coarsest grid, the grid search finds the cheapest
 // refinement, snapping finds the cheapest admissible grid point (as a search of every
-// lattice point would) and among equally cheap ones keeps the one nearest the input.
+// lattice point would) and among equally cheap ones keeps the one nearest the input; the
+// plan's running entropy bound never shrinks and ends at the whole estimate.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -203,6 +204,39 @@ TEST(Grid, LargeAnimationsAreTriedOnAMiddleRunAndFailedTrialsKeepTheCoarsest) {
   EXPECT_GE(frames.front(), 33u);
   EXPECT_FALSE(c.whole);
   EXPECT_DOUBLE_EQ(c.grid.step, coarsest_step(max_distance));
+}
+
+// The plan drops a candidate once its running bits exceed the best complete one's: sound
+// only if the running figure never shrinks and ends at estimate_residual_bits' value.
+TEST(RunningBits, NeverShrinksAndEndsAtTheWholeListsEstimate) {
+  std::mt19937 rng(7);
+  std::geometric_distribution<int> magnitude(0.4);
+  std::uniform_int_distribution<int> context(0, int(RunningBits::kContexts) - 1), coin(0, 1);
+  for (size_t n : {1u, 17u, 3000u}) {
+    std::vector<int64_t> residuals;
+    std::vector<uint8_t> contexts;
+    RunningBits running(n);
+    running.reset();
+    double previous = 0;
+    for (size_t i = 0; i < n; ++i) {
+      // Mostly small values, a few far beyond the clamp, both signs, skewed per context.
+      const int c = context(rng);
+      int64_t r = magnitude(rng) * (c % 3 + 1);
+      if (i % 97 == 0) r = int64_t(1) << (20 + i % 20);
+      if (coin(rng)) r = -r;
+      residuals.push_back(r);
+      contexts.push_back(uint8_t(c));
+      running.add(size_t(c), r);
+      ASSERT_GE(running.bits(), previous) << "after " << i + 1 << " residuals";
+      previous = running.bits();
+      // Every prefix's running figure is that prefix's own estimate.
+      if (i % 250 == 0 || i + 1 == n) {
+        ASSERT_NEAR(running.bits(), estimate_residual_bits(residuals, contexts), 1e-9 * (1 + running.bits()));
+      }
+    }
+    running.reset();
+    EXPECT_EQ(running.bits(), 0.0);
+  }
 }
 
 TEST(Snap, EquallyCheapPointsKeepTheNearest) {

@@ -2,6 +2,8 @@
 // per-cluster refinement (cluster_plan.cpp) and the PDE model's cost estimates
 // (motion_costs.cpp).
 #pragma once
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -18,6 +20,26 @@ int residual_cost(int64_t r);
 // 1 + 2 e + (r < 0) with e = min(floor(log2 |r|), 40), which *exponent receives (0 for zero).
 constexpr int kResidualClasses = 2 * 41 + 1;
 int residual_class(int64_t r, int* exponent);
+
+// estimate_residual_bits of the residuals added so far, kept up to date as each is added,
+// for contexts below kContexts. It never shrinks when a residual is added, so it bounds the
+// estimate of any longer list from below: the plan drops a candidate predictor as soon as
+// its running bits exceed the best complete candidate's.
+class RunningBits {
+ public:
+  static constexpr size_t kContexts = 15;  // the plan's: neighbour class (5) x axis class (3)
+  // max_count: the most residuals one context receives between resets.
+  explicit RunningBits(size_t max_count);
+  void reset();
+  void add(size_t context, int64_t r);
+  double bits() const { return bits_; }
+
+ private:
+  std::vector<double> step_;
+  std::array<uint32_t, kContexts * kResidualClasses> hist_{};
+  std::array<uint32_t, kContexts> count_{};
+  double bits_ = 0;
+};
 
 // Moves qv (a vertex's three grid values) to the admissible grid point (decoded within
 // radius, model units, of the input position x) cheapest to code against pred.

@@ -312,6 +312,29 @@ std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint3
   return out;
 }
 
+RunningBits::RunningBits(size_t max_count) : step_(max_count + 1) {
+  auto xlog2x = [](double x) { return x > 0 ? x * std::log2(x) : 0.0; };
+  for (size_t x = 0; x <= max_count; ++x) step_[x] = xlog2x(double(x) + 1) - xlog2x(double(x));
+}
+
+void RunningBits::reset() {
+  std::fill(hist_.begin(), hist_.end(), 0u);
+  std::fill(count_.begin(), count_.end(), 0u);
+  bits_ = 0;
+}
+
+// Adding r to a context of n values, h of them in r's class, changes n log2 n - sum h log2 h
+// by d(n) - d(h), d(x) = (x + 1) log2(x + 1) - x log2 x: never negative, as d increases and
+// h <= n. So the running figure never shrinks.
+void RunningBits::add(size_t context, int64_t r) {
+  int e;
+  uint32_t& h = hist_[context * kResidualClasses + size_t(residual_class(r, &e))];
+  uint32_t& n = count_[context];
+  bits_ += e + step_[n] - step_[h];
+  ++h;
+  ++n;
+}
+
 double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::vector<uint8_t>& contexts) {
   std::vector<std::vector<uint64_t>> hist;
   std::vector<uint64_t> count;
@@ -350,17 +373,34 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
   double total = 0;
   GeometricWeightsCache geometry;
   std::vector<AxisRun> runs;
+  RunningBits running(stride);
+  PredictorChoice last_winner{PredictorKind::None, 0, 0, SpatialMode::Off};
   for (uint32_t f : order) {
     int32_t* qf = q->data() + size_t(f) * stride;
     double best = HUGE_VAL;
+    size_t best_index = SIZE_MAX;
     if (po.snap) runs = axis_runs(model.residual, frames[f].data(), V, radius);
-    for (const PredictorChoice& c : candidates_for(*q, V, f, decoded, options, po)) {
+    const std::vector<PredictorChoice> candidates = candidates_for(*q, V, f, decoded, options, po);
+    // The previous frame's kind and spatial mode usually win again: tried first, they give
+    // the bound that drops the others early. Ties still go to the earliest in the list.
+    size_t first = 0;
+    while (first < candidates.size() &&
+           !(candidates[first].kind == last_winner.kind && candidates[first].spatial == last_winner.spatial))
+      ++first;
+    if (first == candidates.size()) first = 0;
+    for (size_t n = 0; n < candidates.size(); ++n) {
+      const size_t index = n == 0 ? first : n <= first ? n - 1 : n;
+      const PredictorChoice& c = candidates[index];
       const PredictorChoice choice[3] = {c, c, c};
       const int32_t* weights[3];
       geometry.for_choice(trav, q->data(), choice, weights);
       for (int a = 0; a < 3; ++a) base_prediction(c, f, a, V, q->data(), options, &base[size_t(a) * V]);
       std::copy(qf, qf + stride, scratch.begin());
-      for (uint32_t pos = 0; pos < V; ++pos) {
+      // Margin for the running sum's rounding against estimate_residual_bits' own.
+      const double limit = best + 1e-9 * best + 1e-6;
+      running.reset();
+      bool dropped = false;
+      for (uint32_t pos = 0; pos < V && !dropped; ++pos) {
         const uint32_t v = trav.order[pos];
         int64_t pred[3];
         vertex_prediction(choice, trav, pos, scratch.data(),
@@ -377,13 +417,18 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
           const size_t i = size_t(pos) * 3 + size_t(a);
           residuals[i] = r;
           contexts[i] = uint8_t(classes[a] * 3 + std::min<uint8_t>(axis_max, 2));
+          running.add(contexts[i], r);
           magnitude[size_t(v) * 3 + size_t(a)] = uint8_t(std::min<int64_t>(r < 0 ? -r : r, 255));
           axis_max = std::max(axis_max, magnitude[size_t(v) * 3 + size_t(a)]);
         }
+        dropped = running.bits() > limit;
       }
+      if (dropped) continue;
       const double bits = estimate_residual_bits(residuals, contexts);
-      if (bits < best) {
+      if (bits < best || (bits == best && index < best_index)) {
         best = bits;
+        best_index = index;
+        last_winner = c;
         best_frame.swap(scratch);
         for (int a = 0; a < 3; ++a) choices[size_t(f) * 3 + size_t(a)] = c;
       }
