@@ -207,7 +207,8 @@ TEST(Grid, LargeAnimationsAreTriedOnAMiddleRunAndFailedTrialsKeepTheCoarsest) {
 }
 
 // The plan drops a candidate once its running bits exceed the best complete one's: sound
-// only if the running figure never shrinks and ends at estimate_residual_bits' value.
+// only if the running figure never shrinks and ends at estimate_residual_bits' value. The
+// plan ranks complete candidates by estimate(), which must equal that value exactly.
 TEST(RunningBits, NeverShrinksAndEndsAtTheWholeListsEstimate) {
   std::mt19937 rng(7);
   std::geometric_distribution<int> magnitude(0.4);
@@ -232,6 +233,7 @@ TEST(RunningBits, NeverShrinksAndEndsAtTheWholeListsEstimate) {
       // Every prefix's running figure is that prefix's own estimate.
       if (i % 250 == 0 || i + 1 == n) {
         ASSERT_NEAR(running.bits(), estimate_residual_bits(residuals, contexts), 1e-9 * (1 + running.bits()));
+        ASSERT_EQ(running.estimate(), estimate_residual_bits(residuals, contexts));
       }
     }
     running.reset();

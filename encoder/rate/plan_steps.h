@@ -21,10 +21,11 @@ int residual_cost(int64_t r);
 constexpr int kResidualClasses = 2 * 41 + 1;
 int residual_class(int64_t r, int* exponent);
 
-// estimate_residual_bits of the residuals added so far, kept up to date as each is added,
-// for contexts below kContexts. It never shrinks when a residual is added, so it bounds the
-// estimate of any longer list from below: the plan drops a candidate predictor as soon as
-// its running bits exceed the best complete candidate's.
+// estimate_residual_bits of the residuals added so far (contexts below kContexts), two ways.
+// bits(): kept up to date as each is added; it never shrinks when a residual is added, so it
+// bounds the estimate of any longer list from below, and the plan drops a candidate
+// predictor as soon as it exceeds the best complete candidate's. estimate(): computed from
+// the counts exactly as estimate_residual_bits computes it, bit for bit, for ranking.
 class RunningBits {
  public:
   static constexpr size_t kContexts = 15;  // the plan's: neighbour class (5) x axis class (3)
@@ -33,12 +34,13 @@ class RunningBits {
   void reset();
   void add(size_t context, int64_t r);
   double bits() const { return bits_; }
+  double estimate() const;
 
  private:
   std::vector<double> step_;
-  std::array<uint32_t, kContexts * kResidualClasses> hist_{};
-  std::array<uint32_t, kContexts> count_{};
-  double bits_ = 0;
+  std::array<uint64_t, kContexts * kResidualClasses> hist_{};
+  std::array<uint64_t, kContexts> count_{};
+  double bits_ = 0, mantissa_ = 0;
 };
 
 // Moves qv (a vertex's three grid values) to the admissible grid point (decoded within

@@ -312,6 +312,19 @@ std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint3
   return out;
 }
 
+// mantissa bits plus, per context, the order-0 entropy of its exponent classes: hist holds
+// kResidualClasses counts per context. One summation order, so equal histograms give
+// equal figures bit for bit (the plan breaks ties by candidate order).
+static double histogram_bits(const uint64_t* hist, const uint64_t* count, size_t contexts, double mantissa) {
+  double bits = mantissa;
+  for (size_t c = 0; c < contexts; ++c)
+    for (size_t k = 0; k < size_t(kResidualClasses); ++k) {
+      const uint64_t h = hist[c * kResidualClasses + k];
+      if (h) bits -= double(h) * std::log2(double(h) / double(count[c]));
+    }
+  return bits;
+}
+
 RunningBits::RunningBits(size_t max_count) : step_(max_count + 1) {
   auto xlog2x = [](double x) { return x > 0 ? x * std::log2(x) : 0.0; };
   for (size_t x = 0; x <= max_count; ++x) step_[x] = xlog2x(double(x) + 1) - xlog2x(double(x));
@@ -320,7 +333,7 @@ RunningBits::RunningBits(size_t max_count) : step_(max_count + 1) {
 void RunningBits::reset() {
   std::fill(hist_.begin(), hist_.end(), 0u);
   std::fill(count_.begin(), count_.end(), 0u);
-  bits_ = 0;
+  bits_ = mantissa_ = 0;
 }
 
 // Adding r to a context of n values, h of them in r's class, changes n log2 n - sum h log2 h
@@ -328,33 +341,29 @@ void RunningBits::reset() {
 // h <= n. So the running figure never shrinks.
 void RunningBits::add(size_t context, int64_t r) {
   int e;
-  uint32_t& h = hist_[context * kResidualClasses + size_t(residual_class(r, &e))];
-  uint32_t& n = count_[context];
+  uint64_t& h = hist_[context * kResidualClasses + size_t(residual_class(r, &e))];
+  uint64_t& n = count_[context];
   bits_ += e + step_[n] - step_[h];
+  mantissa_ += e;
   ++h;
   ++n;
 }
 
+double RunningBits::estimate() const { return histogram_bits(hist_.data(), count_.data(), kContexts, mantissa_); }
+
 double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::vector<uint8_t>& contexts) {
-  std::vector<std::vector<uint64_t>> hist;
-  std::vector<uint64_t> count;
+  size_t used = 0;
+  for (uint8_t c : contexts) used = std::max(used, size_t(c) + 1);
+  std::vector<uint64_t> hist(used * kResidualClasses, 0), count(used, 0);
   double mantissa = 0;
   for (size_t i = 0; i < residuals.size(); ++i) {
     const size_t c = contexts[i];
-    if (c >= hist.size()) {
-      hist.resize(c + 1, std::vector<uint64_t>(kResidualClasses, 0));
-      count.resize(c + 1, 0);
-    }
     ++count[c];
     int e;
-    ++hist[c][size_t(residual_class(residuals[i], &e))];
+    ++hist[c * kResidualClasses + size_t(residual_class(residuals[i], &e))];
     mantissa += e;
   }
-  double bits = mantissa;
-  for (size_t c = 0; c < hist.size(); ++c)
-    for (uint64_t h : hist[c])
-      if (h) bits -= double(h) * std::log2(double(h) / double(count[c]));
-  return bits;
+  return histogram_bits(hist.data(), count.data(), used, mantissa);
 }
 
 namespace {
@@ -367,8 +376,8 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
   const size_t stride = size_t(V) * 3;
   std::vector<PredictorChoice> choices(size_t(F) * 3);
   std::vector<uint8_t> decoded(F, 0);
-  std::vector<int64_t> base(stride), residuals(stride);
-  std::vector<uint8_t> contexts(stride), magnitude(stride);  // magnitude: by vertex, clamped
+  std::vector<int64_t> base(stride);
+  std::vector<uint8_t> magnitude(stride);  // by vertex, clamped
   std::vector<int32_t> scratch(stride), best_frame(stride);
   double total = 0;
   GeometricWeightsCache geometry;
@@ -414,17 +423,14 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
         neighbour_classes(trav, pos, magnitude, classes);
         for (int a = 0; a < 3; ++a) {
           const int64_t r = int64_t(qv[a]) - pred[a];
-          const size_t i = size_t(pos) * 3 + size_t(a);
-          residuals[i] = r;
-          contexts[i] = uint8_t(classes[a] * 3 + std::min<uint8_t>(axis_max, 2));
-          running.add(contexts[i], r);
+          running.add(size_t(classes[a]) * 3 + std::min<uint8_t>(axis_max, 2), r);
           magnitude[size_t(v) * 3 + size_t(a)] = uint8_t(std::min<int64_t>(r < 0 ? -r : r, 255));
           axis_max = std::max(axis_max, magnitude[size_t(v) * 3 + size_t(a)]);
         }
         dropped = running.bits() > limit;
       }
       if (dropped) continue;
-      const double bits = estimate_residual_bits(residuals, contexts);
+      const double bits = running.estimate();
       if (bits < best || (bits == best && index < best_index)) {
         best = bits;
         best_index = index;
