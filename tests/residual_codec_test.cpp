@@ -159,6 +159,28 @@ TEST(ResidualCodec, ReferenceFramesFindTheRepeatedPoses) {
   for (uint32_t f = 7; f < kSheetFrames; ++f) EXPECT_LT(4 * r.stream_bytes[f], r.stream_bytes[0]) << "frame " << f;
 }
 
+TEST(ResidualCodec, ClusterLayoutsOfferTheirOwnCountOfSimilarPoses) {
+  const Animation anim = sheet_animation();
+  for (uint32_t layout_references : {0u, 3u}) {
+    SCOPED_TRACE("layout references " + std::to_string(layout_references));
+    ResidualPlanOptions po;
+    po.kinds = 1u << int(PredictorKind::Reference) | 1u << int(PredictorKind::None);
+    po.gop_sizes = {1};
+    // The per-frame plan gets no similar pose: only the layout's own count can find the
+    // repeats 6 frames back, and the repeats code far smaller, so that layout's plan wins.
+    po.extra_references = 0;
+    po.cluster_layouts = {{4, 4, layout_references}};
+    const LoopResult r = closed_loop(anim, 1e-3, true, po);
+    EXPECT_EQ(r.decoded, r.chosen);
+    bool repeat_used = false;
+    for (uint32_t f = 6; f < kSheetFrames; ++f)
+      for (const auto& candidate : r.plan.frames[f].candidates)
+        for (const PredictorChoice& c : candidate)
+          repeat_used = repeat_used || (c.kind == PredictorKind::Reference && c.r0 == f - 6);
+    EXPECT_EQ(repeat_used, layout_references > 0);
+  }
+}
+
 TEST(ResidualCodec, ModelPredictorUsesTheSuppliedGridPrediction) {
   const Animation anim = sheet_animation();
   std::vector<int32_t> q;

@@ -22,7 +22,8 @@ namespace dcurve {
 //   motion_block: clusters sharing one motion map per candidate, >= 1.
 //   max_candidates: predictors a frame may keep, 1..kMaxCandidates.
 //   q: in, the rounded grid values (frame-major, within radius); out, the chosen ones.
-// Motion candidates are tried when po.kinds allows PredictorKind::Motion. Deterministic.
+// Motion candidates are tried when po.kinds allows PredictorKind::Motion; the pool offers
+// po.extra_references similar poses per frame (candidates_for). Deterministic.
 PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vector<float>>& frames, double radius,
                                   const std::vector<uint32_t>& order, uint32_t cluster_size, uint32_t motion_block,
                                   uint32_t max_candidates, std::vector<int32_t>* q, const ResidualOptions& options,

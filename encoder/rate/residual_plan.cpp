@@ -486,8 +486,10 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
     Trial& t = layouts[i];
     t.q = *q;
     const ResidualPlanOptions::ClusterLayout& layout = po.cluster_layouts[i];
+    ResidualPlanOptions layout_po = po;
+    layout_po.extra_references = layout.extra_references;
     t.plan = choose_cluster_plan(model, frames, radius, best.plan.order, layout.cluster_size, layout.motion_block,
-                                 po.max_candidates, &t.q, options, po);
+                                 po.max_candidates, &t.q, options, layout_po);
     t.bytes = encode_residuals(model, t.q, &t.plan, options).size();
   });
   keep_smallest(layouts, &best);
