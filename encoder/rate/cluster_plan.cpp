@@ -152,6 +152,9 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
     // The pool: the frame-wide candidates, and a motion-compensated twin of every Reference.
     ResidualPlanOptions with_references = po;
     with_references.kinds |= 1u << int(PredictorKind::Reference);
+    // Every geometry frame the pool can name is a nearest decoded frame or one of these
+    // poses, so no frame's candidates exceed what a decoder accepts.
+    with_references.extra_references = std::min(po.extra_references, kMaxGeometryFrames - 2);
     std::vector<PredictorChoice> pool;
     for (const PredictorChoice& c : candidates_for(*q, V, f, decoded, options, with_references)) {
       if (c.kind != PredictorKind::Reference || po.kinds >> int(PredictorKind::Reference) & 1) pool.push_back(c);

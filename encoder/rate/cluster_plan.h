@@ -23,7 +23,9 @@ namespace dcurve {
 //   max_candidates: predictors a frame may keep, 1..kMaxCandidates.
 //   q: in, the rounded grid values (frame-major, within radius); out, the chosen ones.
 // Motion candidates are tried when po.kinds allows PredictorKind::Motion; the pool offers
-// po.extra_references similar poses per frame (candidates_for). Deterministic.
+// po.extra_references similar poses per frame (candidates_for), at most
+// kMaxGeometryFrames - 2 = 6 so that no frame names more geometry frames than a decoder
+// accepts. Deterministic.
 PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vector<float>>& frames, double radius,
                                   const std::vector<uint32_t>& order, uint32_t cluster_size, uint32_t motion_block,
                                   uint32_t max_candidates, std::vector<int32_t>* q, const ResidualOptions& options,

@@ -487,9 +487,7 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
     t.q = *q;
     const ResidualPlanOptions::ClusterLayout& layout = po.cluster_layouts[i];
     ResidualPlanOptions layout_po = po;
-    // Every geometry frame a frame's candidates can name is one of these or a nearest decoded
-    // frame, so this bound keeps every plan within kMaxGeometryFrames.
-    layout_po.extra_references = std::min(layout.extra_references, kMaxGeometryFrames - 2);
+    layout_po.extra_references = layout.extra_references;
     t.plan = choose_cluster_plan(model, frames, radius, best.plan.order, layout.cluster_size, layout.motion_block,
                                  po.max_candidates, &t.q, options, layout_po);
     t.bytes = encode_residuals(model, t.q, &t.plan, options).size();

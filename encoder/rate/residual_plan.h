@@ -31,12 +31,11 @@ struct ResidualPlanOptions {
   // Per-cluster predictors (encoder/rate/cluster_plan.h), each layout tried on the chosen
   // coding order (the smallest coded payload wins, one predictor per frame included):
   // traversal positions per cluster (>= 1), clusters per motion map (>= 1) and the similar
-  // poses offered per frame (extra_references for this layout's pool, at most
-  // kMaxGeometryFrames - 2 = 6 are used: with the two nearest decoded frames they are the
-  // geometry frames a frame may name, codec/residual.h). Small
-  // clusters follow the mesh's parts, and different parts find different similar poses
-  // (6 instead of 3: horse-gallop 90,310 -> 87,798 bytes at 1e-3, no input grew); large
-  // clusters pay for motion maps on few vertices, and more poses made cloth-sphere grow.
+  // poses offered per frame (extra_references for this layout's pool; the cluster plan uses
+  // at most 6). Small clusters follow the mesh's parts, and different parts find different
+  // similar poses (6 instead of 3: horse-gallop 90,310 -> 87,798 bytes at 1e-3, no input
+  // grew); large ones pay for motion maps on few vertices, and more poses made cloth-sphere
+  // grow.
   struct ClusterLayout {
     uint32_t cluster_size, motion_block;
     uint32_t extra_references = 3;
