@@ -194,6 +194,11 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
       std::copy(orig.begin(), orig.end(), qf);
       frame_res.clear();
       Triple prev = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
+      // Places in `allowed`, most wins in this round first (stable): the evaluation order.
+      std::vector<uint32_t> wins(allowed.size(), 0);
+      std::vector<size_t> by_wins(allowed.size());
+      for (size_t i = 0; i < by_wins.size(); ++i) by_wins[i] = i;
+      std::vector<size_t> places;
       MotionRow prev_row[3];
       std::vector<std::vector<Triple>> paid(blocks);  // choices whose map the block has coded
       for (uint32_t k = 0; k < clusters; ++k) {
@@ -262,10 +267,16 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
           std::copy(per_axis, per_axis + 3, axis_bits);
           return bits;
         };
-        auto consider = [&](const Triple& t, double axis_bits[3]) {
-          const double bits = evaluate(t, best, axis_bits);
-          if (bits >= best) return;
+        // The winner is the least bits, ties to the earliest place in `allowed` (the mix comes
+        // after all), whatever order the entries are evaluated in: an entry before the best
+        // so far must exceed its bits to stop, one after it only reach them.
+        size_t best_place = SIZE_MAX;
+        auto consider = [&](const Triple& t, size_t place, double axis_bits[3]) {
+          const bool earlier = place < best_place;
+          const double bits = evaluate(t, earlier ? std::nextafter(best, HUGE_VAL) : best, axis_bits);
+          if (bits > best || (bits == best && !earlier)) return;
           best = bits;
+          best_place = place;
           chosen[k] = t;
           best_values.clear();
           for (uint32_t pos = begin; pos < end; ++pos)
@@ -276,9 +287,19 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
         // tried too (the snapped grid point couples the axes, so it is evaluated anew).
         double best_axis[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
         Triple mix = allowed[0];
-        for (const Triple& t : allowed) {
+        // Evaluated first: the previous cluster's choice, then the round's most frequent
+        // winners. A cheap winner found early stops the others sooner: on horse-gallop at
+        // --grid 2, 11.8 million vertices evaluated instead of 22.9 (in allowed order). Only
+        // the mix depends on the order, through which evaluations complete.
+        places.clear();
+        const size_t first = size_t(std::find(allowed.begin(), allowed.end(), prev) - allowed.begin());
+        if (first < allowed.size()) places.push_back(first);
+        for (size_t place : by_wins)
+          if (place != first) places.push_back(place);
+        for (size_t place : places) {
+          const Triple& t = allowed[place];
           double axis_bits[3];
-          consider(t, axis_bits);
+          consider(t, place, axis_bits);
           for (int a = 0; a < 3; ++a)
             if (axis_bits[a] < best_axis[a]) {
               best_axis[a] = axis_bits[a];
@@ -287,7 +308,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
         }
         if (round == 0 && std::find(allowed.begin(), allowed.end(), mix) == allowed.end()) {
           double axis_bits[3];
-          consider(mix, axis_bits);
+          consider(mix, allowed.size(), axis_bits);
         }
         // Commit the winner: its values, and the magnitudes later contexts read.
         for (uint32_t pos = begin; pos < end; ++pos) {
@@ -299,6 +320,11 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
           }
         }
         prev = chosen[k];
+        if (best_place < allowed.size()) {
+          size_t i = size_t(std::find(by_wins.begin(), by_wins.end(), best_place) - by_wins.begin());
+          ++wins[best_place];
+          for (; i > 0 && wins[by_wins[i - 1]] < wins[by_wins[i]]; --i) std::swap(by_wins[i - 1], by_wins[i]);
+        }
         if (std::find(paid[b].begin(), paid[b].end(), prev) == paid[b].end()) {
           bool motion = false;
           for (int a = 0; a < 3; ++a)
