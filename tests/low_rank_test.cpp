@@ -220,6 +220,27 @@ TEST(LowRank, BasisValuesStayNearTheirAmplitudesAndTheMeanIsRounded) {
   EXPECT_GT(moved, 0u) << "snapping chose no value other than the nearest";
 }
 
+// The memo only saves work: counts up and down and steps interleaved, as the screening
+// calls them, give the model a call without it gives, byte for byte.
+TEST(LowRank, BasisMemoGivesTheSameModelAsCodingAfresh) {
+  const SheetOnGrid sheet = sheet_on_grid();
+  const std::vector<int32_t>& q = sheet.q;
+  const GridComponents pca = grid_components(q, sheet.model.meta.frame_count, sheet.n, 6);
+  ASSERT_EQ(pca.weights.size(), 6u);
+  BasisMemo memo;
+  const std::pair<uint32_t, double> calls[] = {{2, 0.5}, {5, 0.5}, {1, 0.5}, {3, 2.0}, {6, 0.5}, {4, 2.0}, {3, 0.5}};
+  for (const auto& [K, step] : calls) {
+    Model fresh = sheet.model, memoized = sheet.model;
+    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &fresh, &q));
+    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &memoized, &q, &memo));
+    EXPECT_EQ(memoized.low_rank.basis_payload, fresh.low_rank.basis_payload) << "K " << K << " step " << step;
+    EXPECT_EQ(memoized.low_rank.coeffs, fresh.low_rank.coeffs) << "K " << K << " step " << step;
+    EXPECT_EQ(memoized.low_rank.coeff_shifts, fresh.low_rank.coeff_shifts) << "K " << K << " step " << step;
+  }
+  ASSERT_EQ(memo.entries.size(), 2u);  // one per step
+  EXPECT_EQ(memo.entries[0].modes.size(), 6u);
+}
+
 TEST(LowRank, RoundShiftIsHalfUpDivision) {
   std::mt19937_64 rng(7);
   for (int i = 0; i < 20000; ++i) {

@@ -84,9 +84,11 @@ void snap_basis_vector(const Traversal& t, const double* x_all, const int32_t* m
 // neck 13,472 -> 12,984 bytes, rope-small 50,225 -> 48,714 at 1e-3. A basis vector is a
 // field over the mean shape, so Geometric takes its weights from the mean (g = 0).
 // Basis values are snapped (snap_basis_vector) under each mode tried; `values` receives the
-// ones coded. `exact`: the K basis vectors' amplitudes in basis steps.
+// ones coded. `exact`: the K basis vectors' amplitudes in basis steps. memo (may be null):
+// the modes and values chosen for this mean and step by earlier calls, extended here.
 std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t>* values_io,
-                                         const std::vector<double>& exact, uint32_t frames, int threads) {
+                                         const std::vector<double>& exact, uint32_t frames, int threads,
+                                         BasisMemo::Entry* memo = nullptr) {
   std::vector<int32_t>& values = *values_io;
   const size_t n = size_t(model.meta.vertex_count) * 3;
   Model pseudo;
@@ -131,13 +133,26 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t
   };
   std::vector<SpatialMode> modes(frames, SpatialMode::Off);
   std::vector<int32_t> mean(values.begin(), values.begin() + std::ptrdiff_t(n));
-  modes[0] = smallest_mode(&mean, {SpatialMode::Off}, nullptr);
-  parallel_for(frames - 1, threads, [&](size_t k) {
+  // Components the memo holds are copied; the others are chosen and added to it.
+  const size_t known = memo ? std::min<size_t>(memo->modes.size(), frames - 1) : 0;
+  modes[0] = memo && !memo->modes.empty() ? memo->mean_mode : smallest_mode(&mean, {SpatialMode::Off}, nullptr);
+  for (size_t k = 0; k < known; ++k) {
+    modes[k + 1] = memo->modes[k];
+    std::copy(memo->values.begin() + std::ptrdiff_t(k * n), memo->values.begin() + std::ptrdiff_t((k + 1) * n),
+              values.begin() + std::ptrdiff_t((k + 1) * n));
+  }
+  parallel_for(frames - 1 - known, threads, [&](size_t i) {
+    const size_t k = known + i;
     std::vector<int32_t> two = mean;  // the mean, then basis vector k
     two.insert(two.end(), values.begin() + std::ptrdiff_t((k + 1) * n), values.begin() + std::ptrdiff_t((k + 2) * n));
     modes[k + 1] = smallest_mode(&two, {modes[0], SpatialMode::Off}, exact.data() + k * n);
     std::copy(two.begin() + std::ptrdiff_t(n), two.end(), values.begin() + std::ptrdiff_t((k + 1) * n));
   });
+  if (memo && frames - 1 > known) {
+    memo->mean_mode = modes[0];
+    memo->modes.assign(modes.begin() + 1, modes.end());
+    memo->values.assign(values.begin() + std::ptrdiff_t(n), values.end());
+  }
   pseudo.meta.frame_count = frames;
   PredictorPlan plan = plan_of(modes);
   return encode_residuals(pseudo, values, &plan, options);
@@ -192,7 +207,7 @@ size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads
 }
 
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
-                       Model* model, const std::vector<int32_t>* q) {
+                       Model* model, const std::vector<int32_t>* q, BasisMemo* memo) {
   const uint32_t F = model->meta.frame_count;
   const size_t n = pca.mean.size();
   if (K == 0 || K > pca.weights.size() || K > kMaxLowRankComponents || !(basis_step > 0)) return false;
@@ -222,7 +237,18 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
       exact[size_t(k) * n + i] = pca.amplitudes[k][i] / basis_step;
       if (!round_to(exact[size_t(k) * n + i], kMaxLowRankBasis, &values[(size_t(k) + 1) * n + i])) return false;
     }
-  lr.basis_payload = code_mean_and_basis(*model, &values, exact, K + 1, threads);
+  BasisMemo::Entry* entry = nullptr;
+  if (memo) {
+    for (BasisMemo::Entry& e : memo->entries)
+      if (e.basis_step == basis_step && e.mean_shift == mean_shift) entry = &e;
+    if (!entry) {
+      memo->entries.emplace_back();
+      entry = &memo->entries.back();
+      entry->basis_step = basis_step;
+      entry->mean_shift = mean_shift;
+    }
+  }
+  lr.basis_payload = code_mean_and_basis(*model, &values, exact, K + 1, threads, entry);
   if (lr.basis_payload.empty()) return false;
   std::vector<double> weights(size_t(F) * K);
   for (uint32_t f = 0; f < F; ++f)

@@ -34,13 +34,30 @@ GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t
 // alone, as quantize_low_rank codes it: with the spatial mode that codes it smallest.
 size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads);
 
+// Basis vectors quantize_low_rank has chosen for one GridComponents and model, by basis step
+// and mean shift: a vector's coded values and spatial mode depend on those, the mean and its
+// own amplitudes only, not on how many components follow, so a screening over component
+// counts chooses each vector once. Opaque to callers; bound to the first components and
+// model it is used with.
+struct BasisMemo {
+  struct Entry {
+    double basis_step = 0;
+    uint32_t mean_shift = 0;
+    SpatialMode mean_mode = SpatialMode::Off;
+    std::vector<SpatialMode> modes;  // of the components chosen so far, in order
+    std::vector<int32_t> values;     // their values, V * 3 each
+  };
+  std::vector<Entry> entries;
+};
+
 // Quantizes the first K components (K <= pca.weights.size()) into model->low_rank: basis
 // values on a step of basis_step grid units, the mean on 2^-mean_shift grid units, the
 // coefficients fine enough that their rounding moves a prediction by at most basis_step;
 // codes the mean and basis with the residual coder (model's faces or curves give the
 // neighbours) on up to `threads` threads (0: all cores; the bytes never depend on it).
-// False when a value would leave the format's ranges.
+// memo (may be null; the same pca and model on every call) makes the result no different,
+// only faster. False when a value would leave the format's ranges.
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
-                       Model* model, const std::vector<int32_t>* q = nullptr);
+                       Model* model, const std::vector<int32_t>* q = nullptr, BasisMemo* memo = nullptr);
 
 }  // namespace dcurve

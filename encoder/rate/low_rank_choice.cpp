@@ -174,10 +174,13 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   const FrameSample sample = sample_frames(*model, frames, rounded, ((F + kScreenFrames - 1) / kScreenFrames) | 1);
   const double sample_scale = double(F) / double(sample.frames.size());
   std::vector<Candidate> candidates;
+  std::vector<BasisMemo> memos(pcas.size());  // per anchor
   auto try_candidate = [&](const GridComponents& pca, uint32_t K, double step, bool* screened) {
     *screened = false;
     Model trial = *model;
-    if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), options.threads, &trial, &rounded)) return true;
+    if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), options.threads, &trial, &rounded,
+                           &memos[size_t(&pca - pcas.data())]))
+      return true;
     const double section = double(low_rank_bytes(trial).size());
     if (!forced && section >= double(model->residual.payload.size())) return true;
     std::vector<int32_t> prediction, sampled, q = sample.rounded;
