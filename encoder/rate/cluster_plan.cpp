@@ -194,7 +194,8 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
       std::copy(orig.begin(), orig.end(), qf);
       frame_res.clear();
       Triple prev = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
-      // Places in `allowed`, most wins in this round first (stable): the evaluation order.
+      // Places in `allowed`, most wins in this round first (equal counts in the order they
+      // reached them): the evaluation order after the previous cluster's choice.
       std::vector<uint32_t> wins(allowed.size(), 0);
       std::vector<size_t> by_wins(allowed.size());
       for (size_t i = 0; i < by_wins.size(); ++i) by_wins[i] = i;
