@@ -14,6 +14,12 @@ inline size_t thread_count(int threads) {
   return threads > 0 ? size_t(threads) : size_t(std::max(1u, std::thread::hardware_concurrency()));
 }
 
+// Threads each of `jobs` side-by-side jobs may use when they share `threads` (as above): an
+// equal share, at least one.
+inline int threads_per_job(int threads, size_t jobs) {
+  return int(std::max<size_t>(1, thread_count(threads) / std::max<size_t>(jobs, 1)));
+}
+
 // Calls job(i) once for every i in [0, count), on up to `threads` threads (0: all hardware
 // threads; the calling thread is one of them). Returns when every job has finished.
 template <class Job>

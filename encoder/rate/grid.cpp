@@ -82,7 +82,7 @@ GridChoice choose_grid(const Animation& anim, double max_distance, int threads, 
   for (size_t i = 0; i < kGridTrialSlots; ++i) grids[i] = make_grid(anim, max_distance, kGridRefinements[i]);
   auto run = [&](const std::vector<size_t>& slots) {
     // Trials run side by side and share the threads.
-    const int each = int(std::max<size_t>(1, thread_count(threads) / slots.size()));
+    const int each = threads_per_job(threads, slots.size());
     parallel_for(slots.size(), threads, [&](size_t k) {
       const size_t i = slots[k];
       // A tolerance too tiny for a refined grid's range gives the coarsest grid again.

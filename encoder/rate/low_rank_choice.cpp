@@ -124,7 +124,7 @@ bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>&
   const size_t orders = plan_options.gop_sizes.size();
   std::vector<std::vector<uint8_t>> payloads(orders);
   // The orders run side by side and share the threads.
-  const int each = int(std::max<size_t>(1, thread_count(plan_options.threads) / std::max<size_t>(orders, 1)));
+  const int each = threads_per_job(plan_options.threads, orders);
   parallel_for(orders, plan_options.threads, [&](size_t i) {
     ResidualPlanOptions one = plan_options;
     one.gop_sizes = {plan_options.gop_sizes[i]};
