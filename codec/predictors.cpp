@@ -103,6 +103,23 @@ Traversal traversal_from_faces(const Model& m) {
     t.nb_offsets[i + 1] = uint32_t(t.nb.size());
   }
   add_parallelograms(m.faces, pos, &t);
+  // Fit sets: the earlier neighbours, then the vertices before v adjacent to one of them.
+  t.fit_offsets.assign(size_t(V) + 1, 0);
+  std::vector<uint32_t> ring;
+  for (uint32_t i = 0; i < V; ++i) {
+    const uint32_t v = t.order[i], nb_begin = t.nb_offsets[i], nb_end = t.nb_offsets[i + 1];
+    const auto is_nb = [&](uint32_t w) { return std::binary_search(t.nb.begin() + nb_begin, t.nb.begin() + nb_end, w); };
+    ring.clear();
+    for (uint32_t k = nb_begin; k < nb_end; ++k)
+      for (uint32_t j = off[t.nb[k]]; j < off[t.nb[k] + 1]; ++j)
+        if (pos[adj[j]] < i && adj[j] != v && !is_nb(adj[j])) ring.push_back(adj[j]);
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    t.fit.insert(t.fit.end(), t.nb.begin() + nb_begin, t.nb.begin() + nb_end);
+    t.fit.insert(t.fit.end(), ring.begin(), ring.end());
+    t.fit.resize(std::min<size_t>(t.fit.size(), t.fit_offsets[i] + kMaxFitPoints));
+    t.fit_offsets[i + 1] = uint32_t(t.fit.size());
+  }
   return t;
 }
 
@@ -112,12 +129,16 @@ Traversal traversal_from_curves(const Model& m) {
   t.order = c.vertices;
   t.nb_offsets.assign(t.order.size() + 1, 0);
   t.para_offsets.assign(t.order.size() + 1, 0);
+  t.fit_offsets.assign(t.order.size() + 1, 0);
   for (uint32_t k = 0; k < c.curve_count(); ++k)
     for (uint32_t i = c.offsets[k]; i < c.offsets[k + 1]; ++i) {
       if (i > c.offsets[k]) t.nb.push_back(c.vertices[i - 1]);
       if (i > c.offsets[k] + 1) t.para.insert(t.para.end(), {c.vertices[i - 1], c.vertices[i - 1], c.vertices[i - 2]});
+      // A curve vertex's neighbours are the previous and next ones: the Fit set is (p1, p2).
+      for (uint32_t back = 1; back <= 2 && i >= c.offsets[k] + back; ++back) t.fit.push_back(c.vertices[i - back]);
       t.nb_offsets[i + 1] = uint32_t(t.nb.size());
       t.para_offsets[i + 1] = uint32_t(t.para.size() / 3);
+      t.fit_offsets[i + 1] = uint32_t(t.fit.size());
     }
   return t;
 }
@@ -173,6 +194,73 @@ void triple_weights(const int32_t* qg, uint32_t v, uint32_t a, uint32_t b, uint3
 }
 }  // namespace
 
+namespace {
+int bit_length(int64_t x) {
+  int b = 0;
+  while (b < 63 && (x >> b) != 0) ++b;
+  return b;
+}
+
+// Fit weights of one position: the affine function c + g . (x - x_v) fitted by least squares
+// (ridge 16 on g, so flat and collinear sets stay solvable) to the set's values is, at v, the
+// constant c = sum_j w_j value_j with w_j = (det - t . d_j) / (n det - t . s), where d_j are
+// the offsets to v scaled to 7 bits, s their sum, C = sum d_j d_j^T + 16 I, det = det C and
+// t = adj(C) s. With |d| <= 128 and n <= 16 every product below stays under 2^63.
+void position_fit_weights(const int32_t* qg, uint32_t v, const uint32_t* set, uint32_t n, int32_t* w) {
+  std::fill(w, w + n, 0);
+  if (n < 2) return;
+  int64_t d[kMaxFitPoints][3], m = 0;
+  for (uint32_t j = 0; j < n; ++j)
+    for (int k = 0; k < 3; ++k) {
+      d[j][k] = int64_t(qg[size_t(set[j]) * 3 + size_t(k)]) - qg[size_t(v) * 3 + size_t(k)];
+      m = std::max(m, d[j][k] < 0 ? -d[j][k] : d[j][k]);
+    }
+  int shift = 0;
+  while ((m >> shift) > 127) ++shift;
+  int64_t sum[3] = {0, 0, 0}, c[3][3] = {{16, 0, 0}, {0, 16, 0}, {0, 0, 16}};
+  for (uint32_t j = 0; j < n; ++j) {
+    for (int k = 0; k < 3; ++k) d[j][k] = floor_shift(d[j][k], shift);
+    for (int k = 0; k < 3; ++k) {
+      sum[k] += d[j][k];
+      for (int l = 0; l < 3; ++l) c[k][l] += d[j][k] * d[j][l];
+    }
+  }
+  const int64_t adj[3][3] = {
+      {c[1][1] * c[2][2] - c[1][2] * c[2][1], c[0][2] * c[2][1] - c[0][1] * c[2][2], c[0][1] * c[1][2] - c[0][2] * c[1][1]},
+      {c[1][2] * c[2][0] - c[1][0] * c[2][2], c[0][0] * c[2][2] - c[0][2] * c[2][0], c[0][2] * c[1][0] - c[0][0] * c[1][2]},
+      {c[1][0] * c[2][1] - c[1][1] * c[2][0], c[0][1] * c[2][0] - c[0][0] * c[2][1], c[0][0] * c[1][1] - c[0][1] * c[1][0]}};
+  const int64_t det = c[0][0] * adj[0][0] + c[0][1] * adj[1][0] + c[0][2] * adj[2][0];
+  int64_t tv[3], ts = 0;
+  for (int k = 0; k < 3; ++k) {
+    tv[k] = adj[k][0] * sum[0] + adj[k][1] * sum[1] + adj[k][2] * sum[2];
+    ts += tv[k] * sum[k];
+  }
+  const int64_t den = int64_t(n) * det - ts;
+  if (den <= 0) return;  // cannot happen (C exceeds sum d d^T), but no division by it then
+  const int scale = std::max(0, bit_length(den) - 30);
+  const int64_t den_scaled = floor_shift(den, scale);
+  for (uint32_t j = 1; j < n; ++j) {
+    const int64_t num = det - (tv[0] * d[j][0] + tv[1] * d[j][1] + tv[2] * d[j][2]);
+    const int64_t num_scaled = std::clamp<int64_t>(floor_shift(num, scale), -(int64_t(1) << 40), int64_t(1) << 40);
+    w[j] = int32_t(std::clamp(detail::rounded_mean(num_scaled * kFitUnit, den_scaled), -kFitLimit, kFitLimit));
+  }
+}
+}  // namespace
+
+std::vector<int32_t> fit_weights(const Traversal& t, const int32_t* qg) {
+  std::vector<int32_t> w(t.fit.size());
+  for (uint32_t pos = 0; pos + 1 < uint32_t(t.fit_offsets.size()); ++pos)
+    position_fit_weights(qg, t.order[pos], &t.fit[t.fit_offsets[pos]], t.fit_offsets[pos + 1] - t.fit_offsets[pos],
+                         &w[t.fit_offsets[pos]]);
+  return w;
+}
+
+std::vector<int32_t> spatial_weights(const Traversal& t, const int32_t* qg, SpatialMode mode) {
+  if (mode == SpatialMode::Geometric) return geometric_weights(t, qg);
+  if (mode == SpatialMode::Fit) return fit_weights(t, qg);
+  return {};
+}
+
 std::vector<int32_t> geometric_weights(const Traversal& t, const int32_t* qg) {
   std::vector<int32_t> w(t.para.size() / 3 * 2);
   for (uint32_t pos = 0; pos + 1 < uint32_t(t.para_offsets.size()); ++pos)
@@ -182,28 +270,36 @@ std::vector<int32_t> geometric_weights(const Traversal& t, const int32_t* qg) {
   return w;
 }
 
-const int32_t* GeometricWeightsCache::get(const Traversal& t, const int32_t* q, uint32_t g) {
+const int32_t* GeometricWeightsCache::get(const Traversal& t, const int32_t* q, uint32_t g, SpatialMode mode) {
   // Least recently used goes first, so the (up to three) frames one cluster asked for last
   // stay valid while it asks for another.
-  for (size_t i = 0; i < entries_.size(); ++i)
-    if (entries_[i].first == g) {
-      std::rotate(entries_.begin() + std::ptrdiff_t(i), entries_.begin() + std::ptrdiff_t(i) + 1, entries_.end());
-      return entries_.back().second.data();
-    }
-  if (entries_.size() >= kCapacity) entries_.erase(entries_.begin());
-  entries_.emplace_back(g, geometric_weights(t, q + size_t(g) * t.order.size() * 3));
-  return entries_.back().second.data();
+  size_t i = 0;
+  while (i < entries_.size() && entries_[i].g != g) ++i;
+  if (i < entries_.size()) {
+    std::rotate(entries_.begin() + std::ptrdiff_t(i), entries_.begin() + std::ptrdiff_t(i) + 1, entries_.end());
+  } else {
+    if (entries_.size() >= kCapacity) entries_.erase(entries_.begin());
+    entries_.push_back({g, {}, {false, false}});
+  }
+  Entry& e = entries_.back();
+  const size_t which = mode == SpatialMode::Fit ? 1 : 0;
+  if (!e.done[which]) {
+    e.tables[which] = spatial_weights(t, q + size_t(g) * t.order.size() * 3, which ? SpatialMode::Fit : SpatialMode::Geometric);
+    e.done[which] = true;
+  }
+  return e.tables[which].data();
 }
 
 void GeometricWeightsCache::for_choice(const Traversal& t, const int32_t* q, const PredictorChoice* choice,
                                        const int32_t* out[3]) {
-  for (int a = 0; a < 3; ++a) out[a] = choice[a].spatial == SpatialMode::Geometric ? get(t, q, choice[a].g) : nullptr;
+  for (int a = 0; a < 3; ++a)
+    out[a] = uses_geometry(choice[a].spatial) ? get(t, q, choice[a].g, choice[a].spatial) : nullptr;
 }
 
 bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
                       const ResidualOptions& options) {
   auto ok = [&](uint32_t r) { return r < decoded.size() && r != f && decoded[r]; };
-  if (c.spatial == SpatialMode::Geometric && !ok(c.g)) return false;
+  if (uses_geometry(c.spatial) && !ok(c.g)) return false;
   auto near = [](uint32_t a, uint32_t b) { return (a > b ? a - b : b - a) <= kMaxLinearSpan; };
   switch (c.kind) {
     case PredictorKind::None: return true;

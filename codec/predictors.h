@@ -2,6 +2,7 @@
 // already decoded, so that only the prediction error is coded. format_spec/residual.md
 // documents each predictor; the ids below are written to files and never change meaning.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -38,15 +39,22 @@ enum class SpatialMode : uint8_t {
                       // it in a decoded frame g: err(a) + alpha (err(b) - err(a)) + beta
                       // (err(c) - err(a)); exact for any affine motion of the patch on an
                       // irregular mesh, where Parallelogram assumes v = a + b - c
+  Fit = 5,            // the least-squares affine function of position (in a decoded frame g)
+                      // through the errors of up to 16 decoded vertices of the first two
+                      // rings, evaluated at v: averages the rounding noise of smooth fields
+                      // (low-rank basis vectors) over many points, where the others use three
 };
-constexpr uint8_t kSpatialModeCount = 5;
+constexpr uint8_t kSpatialModeCount = 6;
+
+// Whether the mode's weights come from a geometry frame g (PredictorChoice::g).
+inline bool uses_geometry(SpatialMode s) { return s == SpatialMode::Geometric || s == SpatialMode::Fit; }
 
 // The predictor of one (frame, axis).
 struct PredictorChoice {
   PredictorKind kind = PredictorKind::Reference;
   uint32_t r0 = 0, r1 = 0;  // reference frames: Reference and Motion use r0, Linear r0 and r1
   SpatialMode spatial = SpatialMode::Parallelogram;
-  uint32_t g = 0;  // Geometric: the decoded frame whose shape gives the weights
+  uint32_t g = 0;  // Geometric and Fit: the decoded frame whose shape gives the weights
 };
 
 // Linear references lie within this many frames of f and of each other, so the integer
@@ -63,8 +71,15 @@ struct Traversal {
   // [para_offsets[i], para_offsets[i+1]); all three decoded before position i.
   std::vector<uint32_t> para_offsets;
   std::vector<uint32_t> para;
+  // Position i's Fit set: fit[fit_offsets[i] .. fit_offsets[i+1]), at most kMaxFitPoints
+  // vertices decoded before position i: its earlier neighbours, then second-ring vertices.
+  std::vector<uint32_t> fit_offsets;
+  std::vector<uint32_t> fit;
   bool from_faces = false;
 };
+
+// Vertices in one position's Fit set, at most.
+constexpr uint32_t kMaxFitPoints = 16;
 
 // Builds the traversal: breadth-first over the mesh edges when `model.faces` is present
 // (each component from its lowest vertex id; parallelograms are a face (v, a, b) and the
@@ -119,32 +134,59 @@ constexpr int32_t kGeometricUnit = 256, kGeometricLimit = 1024;
 // Integer arithmetic throughout (format_spec/residual.md), so every platform agrees.
 std::vector<int32_t> geometric_weights(const Traversal& t, const int32_t* qg);
 
-// geometric_weights of the last few geometry frames one walk used: a frame's candidates,
+// Fit weights are in 1/kFitUnit, within [-kFitLimit, kFitLimit].
+constexpr int64_t kFitUnit = 65536, kFitLimit = int64_t(1) << 20;
+
+// The Fit weights of every position of t, in t.fit's order (one per entry; the first of each
+// position's set is 0, as its error is the origin the others' differences are added to),
+// from the decoded values qg of the geometry frame. Integer arithmetic throughout.
+std::vector<int32_t> fit_weights(const Traversal& t, const int32_t* qg);
+
+// The weight table of `mode` (geometric_weights or fit_weights) from qg; empty for the modes
+// that use none.
+std::vector<int32_t> spatial_weights(const Traversal& t, const int32_t* qg, SpatialMode mode);
+
+// The weight tables of the last few geometry frames one walk used: a frame's candidates,
 // and the next frames, mostly share them. Values of a frame must not change once asked for.
 class GeometricWeightsCache {
  public:
-  // Weights of frame g of q (frame-major, V vertices); valid until kCapacity other frames
-  // were asked for.
-  const int32_t* get(const Traversal& t, const int32_t* q, uint32_t g);
-  // The weights of each axis of `choice` into out[0..2], null where an axis is not Geometric.
+  // Weights of `mode` (Geometric or Fit) of frame g of q (frame-major, V vertices); valid
+  // until kCapacity other frames were asked for.
+  const int32_t* get(const Traversal& t, const int32_t* q, uint32_t g, SpatialMode mode = SpatialMode::Geometric);
+  // The weights of each axis of `choice` into out[0..2], null where an axis uses none.
   void for_choice(const Traversal& t, const int32_t* q, const PredictorChoice* choice, const int32_t* out[3]);
 
  private:
   // A frame names at most 8 geometry frames (kMaxGeometryFrames, codec/residual.h), so a
   // walk computes each frame's tables once: decoding stays linear however clusters switch.
   static constexpr size_t kCapacity = 8;
-  std::vector<std::pair<uint32_t, std::vector<int32_t>>> entries_;  // most recent last
+  struct Entry {
+    uint32_t g;
+    std::vector<int32_t> tables[2];  // Geometric, Fit: each computed when first asked for
+    bool done[2];
+  };
+  std::vector<Entry> entries_;  // most recent last
 };
 
 // The spatial correction of traversal position `pos` on `axis`: see SpatialMode. qf is
 // frame f's values (earlier positions decoded); base(u) the base prediction of vertex u on
-// that axis under this position's predictor; weights the geometric_weights of the
-// choice's geometry frame (read only by Geometric).
+// that axis under this position's predictor; weights the geometric_weights (Geometric) or
+// fit_weights (Fit) of the choice's geometry frame (read by those two only).
 template <class Base>
 inline int64_t spatial_correction(SpatialMode mode, const Traversal& t, uint32_t pos, int axis, const int32_t* qf,
                                   const Base& base, const int32_t* weights = nullptr) {
   if (mode == SpatialMode::Off) return 0;
   auto err = [&](uint32_t n) { return int64_t(qf[size_t(n) * 3 + size_t(axis)]) - base(n); };
+  if (mode == SpatialMode::Fit) {
+    const uint32_t begin = t.fit_offsets[pos], end = t.fit_offsets[pos + 1];
+    if (begin == end) return 0;
+    const int64_t e0 = err(t.fit[begin]);
+    // Differences clamped so the sum stays in int64 however large a base prediction is.
+    constexpr int64_t kLimit = int64_t(1) << 36;
+    int64_t sum = 0;
+    for (uint32_t k = begin + 1; k < end; ++k) sum += weights[k] * std::clamp(err(t.fit[k]) - e0, -kLimit, kLimit);
+    return e0 + detail::rounded_mean(sum, kFitUnit);
+  }
   int64_t mean_sum = 0, para_sum = 0;
   const uint32_t nb_begin = t.nb_offsets[pos], nb_end = t.nb_offsets[pos + 1];
   for (uint32_t k = nb_begin; k < nb_end; ++k) mean_sum += err(t.nb[k]);

@@ -301,7 +301,7 @@ bool geometry_frames_within_bound(const FramePredictors& fp) {
   std::vector<uint32_t> frames;
   for (const auto& candidate : fp.candidates)
     for (const PredictorChoice& c : candidate)
-      if (c.spatial == SpatialMode::Geometric && std::find(frames.begin(), frames.end(), c.g) == frames.end())
+      if (uses_geometry(c.spatial) && std::find(frames.begin(), frames.end(), c.g) == frames.end())
         frames.push_back(c.g);
   return frames.size() <= kMaxGeometryFrames;
 }
@@ -369,7 +369,7 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
         w.u8(uint8_t(uint8_t(c.kind) | uint8_t(c.spatial) << kSpatialShift));
         if (has_reference(c.kind)) write_ref(w, f, c.r0);
         if (c.kind == PredictorKind::Linear) write_ref(w, f, c.r1);
-        if (c.spatial == SpatialMode::Geometric) write_ref(w, f, c.g);
+        if (uses_geometry(c.spatial)) write_ref(w, f, c.g);
       }
   }
   StreamWriter coder;
@@ -420,7 +420,7 @@ bool read_header(const Model& model, const ResidualOptions& options, ByteReader&
         c.spatial = SpatialMode(spatial);
         if (has_reference(c.kind)) c.r0 = read_ref(r, f);
         if (c.kind == PredictorKind::Linear) c.r1 = read_ref(r, f);
-        if (c.spatial == SpatialMode::Geometric) c.g = read_ref(r, f);
+        if (uses_geometry(c.spatial)) c.g = read_ref(r, f);
         if (!r.ok || !predictor_usable(c, f, decoded, options))
           return fail(error, c.kind == PredictorKind::Model && r.ok
                                  ? "residual stream needs the motion model prediction, which was not supplied"

@@ -28,7 +28,7 @@ struct FramePredictors {
   std::vector<MotionTransform> transforms;
 };
 constexpr uint32_t kMaxCandidates = 16;
-// Distinct Geometric geometry frames among one frame's candidates: each costs the decoder
+// Distinct Geometric and Fit geometry frames among one frame's candidates: each costs the decoder
 // a table of weights (GeometricWeightsCache holds this many), so the bound keeps decoding
 // linear in the frame's size whatever the file asks for.
 constexpr uint32_t kMaxGeometryFrames = 8;

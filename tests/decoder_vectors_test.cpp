@@ -102,6 +102,15 @@ std::vector<Vector> recipes() {
   geometric.residual.payload = encode_residuals(geometric, testing::grid(geometric.meta.vertex_count, 6), &geometric_plan);
   v.push_back({"geometric", geometric, {}});
 
+  // The same frames with Fit weights from the frame before (format 2.4).
+  Model fit = geometric;
+  std::vector<PredictorChoice> fit_choices(3, PredictorChoice{PredictorKind::None, 0, 0, SpatialMode::Parallelogram, 0});
+  for (uint32_t f = 1; f < 6; ++f)
+    fit_choices.insert(fit_choices.end(), 3, PredictorChoice{PredictorKind::Reference, f - 1, 0, SpatialMode::Fit, f - 1});
+  const PredictorPlan fit_plan = uniform_plan({0, 1, 2, 3, 4, 5}, fit_choices);
+  fit.residual.payload = encode_residuals(fit, testing::grid(fit.meta.vertex_count, 6), &fit_plan);
+  v.push_back({"fit", fit, {}});
+
   // One-point curves and no segments: neither CURV nor SEGS is written (format 2.2).
   Model point_curves = small_model(4);
   point_curves.curves = singleton_curves(point_curves.meta.vertex_count);

@@ -1,7 +1,8 @@
-// The Geometric spatial mode (codec/predictors.h, format_spec/residual.md): its weights
-// locate a vertex against its parallelogram's triangle, it predicts an affine motion of an
-// irregular mesh where Parallelogram cannot, and a payload naming an unusable geometry
-// frame is rejected.
+// The spatial modes whose weights come from a geometry frame (codec/predictors.h,
+// format_spec/residual.md): Geometric locates a vertex against its parallelogram's
+// triangle, Fit fits an affine function to up to 16 decoded vertices; both predict an affine
+// motion of an irregular mesh where Parallelogram cannot, and a payload naming an unusable
+// geometry frame is rejected.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -186,9 +187,9 @@ TEST(GeometricPrediction, RoundTripsAndRejectsAnUnusableGeometryFrame) {
     EXPECT_FALSE(decode_residuals(c.model, &back, &err));
     EXPECT_NE(err.find("unavailable frame"), std::string::npos) << err;
   }
-  // Spatial mode 5 does not exist.
+  // Spatial mode 6 does not exist.
   c.model.residual.payload = good;
-  c.model.residual.payload[size_t(at - good.begin())] = 0x51;
+  c.model.residual.payload[size_t(at - good.begin())] = 0x61;
   EXPECT_FALSE(decode_residuals(c.model, &back, &err));
 }
 
@@ -215,6 +216,138 @@ TEST(GeometricPrediction, AFrameNamesAtMostEightGeometryFrames) {
   PredictorPlan nine = plan_naming(9);
   EXPECT_TRUE(encode_residuals(c.model, c.q, &nine).empty());
   expect_round_trip(&c, plan_naming(8));
+}
+
+// Fit weights against the same least squares in binary64 on the same 7-bit offsets: the
+// integer algorithm (adjugate, shifts, rounding to 1/65536) must agree to the rounding.
+TEST(FitWeights, MatchTheRidgeLeastSquaresOfTheScaledOffsets) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coord(-1.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const uint32_t n = 2 + uint32_t(trial % 15);  // 2..16 points
+    const bool flat = trial % 3 == 0;             // a flat patch, as on a box face
+    const double scale = std::ldexp(1.0, 3 + trial % 27);
+    Traversal t;
+    t.order.resize(n + 1);
+    for (uint32_t i = 0; i <= n; ++i) t.order[i] = i;
+    t.fit_offsets.assign(n + 2, 0);
+    t.fit_offsets[n + 1] = n;
+    for (uint32_t j = 0; j < n; ++j) t.fit.push_back(j);
+    std::vector<int32_t> g(size_t(n + 1) * 3);
+    for (size_t i = 0; i < g.size(); ++i) g[i] = (flat && i % 3 == 2) ? 7 : int32_t(std::lround(coord(rng) * scale));
+    const std::vector<int32_t> w = fit_weights(t, g.data());
+    ASSERT_EQ(w.size(), size_t(n));
+    EXPECT_EQ(w[0], 0);
+    // The reference: offsets to v cut to 7 bits as the format does, then binary64.
+    int64_t m = 0;
+    for (uint32_t j = 0; j < n; ++j)
+      for (int k = 0; k < 3; ++k) m = std::max<int64_t>(m, std::llabs(int64_t(g[j * 3 + k]) - g[n * 3 + k]));
+    int shift = 0;
+    while ((m >> shift) > 127) ++shift;
+    double d[16][3], s[3] = {0, 0, 0}, c[3][3] = {{16, 0, 0}, {0, 16, 0}, {0, 0, 16}};
+    for (uint32_t j = 0; j < n; ++j)
+      for (int k = 0; k < 3; ++k) d[j][k] = std::floor(std::ldexp(double(int64_t(g[j * 3 + k]) - g[n * 3 + k]), -shift));
+    for (uint32_t j = 0; j < n; ++j)
+      for (int k = 0; k < 3; ++k) {
+        s[k] += d[j][k];
+        for (int l = 0; l < 3; ++l) c[k][l] += d[j][k] * d[j][l];
+      }
+    // u = C^-1 s by Cramer's rule.
+    auto det3 = [](const double a[3][3]) {
+      return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+             a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    };
+    const double det = det3(c);
+    double u[3];
+    for (int k = 0; k < 3; ++k) {
+      double ck[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 3; ++col) ck[r][col] = col == k ? s[r] : c[r][col];
+      u[k] = det3(ck) / det;
+    }
+    const double den = n - (u[0] * s[0] + u[1] * s[1] + u[2] * s[2]);
+    double weight_sum = 0;
+    for (uint32_t j = 0; j < n; ++j) {
+      const double wj = (1 - (u[0] * d[j][0] + u[1] * d[j][1] + u[2] * d[j][2])) / den;
+      weight_sum += wj;
+      if (j == 0 || std::fabs(wj) > 15) continue;  // beyond the clamp (16)
+      EXPECT_NEAR(w[j], 65536 * wj, 0.5 + 65536 * 1e-7 * (1 + std::fabs(wj))) << "trial " << trial << " j " << j;
+      ++checked;
+    }
+    EXPECT_NEAR(weight_sum, 1.0, 1e-9);  // affine: the weights of the exact fit sum to 1
+  }
+  EXPECT_GT(checked, 10000);
+}
+
+TEST(FitWeights, ExtremeCoordinatesStayWithinTheClamp) {
+  Traversal t;
+  t.order = {0, 1, 2, 3};
+  t.fit_offsets = {0, 0, 0, 0, 3};
+  t.fit = {0, 1, 2};
+  const int32_t far[12] = {INT32_MIN, INT32_MIN, 0, INT32_MAX, INT32_MIN, 0, INT32_MIN, INT32_MIN + 1, 0,
+                           INT32_MAX, INT32_MAX, INT32_MAX};
+  for (int32_t x : fit_weights(t, far)) {
+    EXPECT_GE(x, -kFitLimit);
+    EXPECT_LE(x, kFitLimit);
+  }
+  // All points on v: every offset is 0, the fit is the mean of the values.
+  const int32_t same[12] = {5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5};
+  const std::vector<int32_t> w = fit_weights(t, same);
+  EXPECT_EQ(w, (std::vector<int32_t>{0, 21845, 21845}));
+}
+
+TEST(FitPrediction, AffineMotionOfAnIrregularMeshToRounding) {
+  const AffineCase c = affine_case();
+  const std::vector<int64_t> fit = frame1_residuals(c, SpatialMode::Fit);
+  const std::vector<int64_t> para = frame1_residuals(c, SpatialMode::Parallelogram);
+  int64_t fit_sum = 0, para_sum = 0, fit_max = 0;
+  // From the fifth position on, every vertex has at least three decoded points around it.
+  for (size_t i = 15; i < fit.size(); ++i) {
+    fit_sum += std::llabs(fit[i]);
+    para_sum += std::llabs(para[i]);
+    fit_max = std::max<int64_t>(fit_max, std::llabs(fit[i]));
+  }
+  // Offsets are cut to 7 bits (Geometric: 12): on a 2-ring some 300 grid units wide, a
+  // position moves by up to 4 units, the field by up to 1.2 times that.
+  EXPECT_LE(fit_max, 6);
+  EXPECT_LT(fit_sum * 4, para_sum) << "fit " << fit_sum << ", parallelogram " << para_sum;
+}
+
+TEST(FitPrediction, RoundTripsAndRejectsAnUnusableGeometryFrame) {
+  AffineCase c = affine_case();
+  expect_round_trip(&c, two_frame_plan(SpatialMode::Fit));
+  if (HasFatalFailure()) return;
+  // Frame 1's predictor is byte 0x51 (Reference | Fit << 4), r0 = 1, g = 1 (zigzag(-1)).
+  const std::vector<uint8_t> good = c.model.residual.payload;
+  const uint8_t pattern[3] = {0x51, 0x01, 0x01};
+  auto at = std::search(good.begin(), good.end(), pattern, pattern + 3);
+  ASSERT_NE(at, good.end());
+  std::vector<int32_t> back;
+  std::string err;
+  c.model.residual.payload[size_t(at - good.begin()) + 2] = 0x00;  // g = frame 1 itself
+  EXPECT_FALSE(decode_residuals(c.model, &back, &err));
+  EXPECT_NE(err.find("unavailable frame"), std::string::npos) << err;
+}
+
+// The Fit set: a vertex's earlier neighbours first, then earlier second-ring vertices, at
+// most kMaxFitPoints, all decoded before it.
+TEST(FitPrediction, FitSetsHoldDecodedNeighboursThenTheSecondRing) {
+  const AffineCase c = affine_case();
+  const Traversal t = build_traversal(c.model);
+  std::vector<uint32_t> pos(t.order.size());
+  for (uint32_t i = 0; i < t.order.size(); ++i) pos[t.order[i]] = i;
+  size_t largest = 0;
+  for (uint32_t i = 0; i < t.order.size(); ++i) {
+    const uint32_t begin = t.fit_offsets[i], end = t.fit_offsets[i + 1];
+    const uint32_t nb = t.nb_offsets[i + 1] - t.nb_offsets[i];
+    ASSERT_LE(end - begin, kMaxFitPoints);
+    ASSERT_GE(end - begin, std::min(nb, kMaxFitPoints));
+    for (uint32_t k = 0; k < std::min(nb, end - begin); ++k) EXPECT_EQ(t.fit[begin + k], t.nb[t.nb_offsets[i] + k]);
+    for (uint32_t k = begin; k < end; ++k) EXPECT_LT(pos[t.fit[k]], i);
+    largest = std::max<size_t>(largest, end - begin);
+  }
+  EXPECT_GE(largest, 8u);  // the second ring adds points on a grid
 }
 
 }  // namespace

@@ -315,7 +315,7 @@ TEST(ResidualCodec, MotionPredictorPerClusterRoundTripsWithinTolerance) {
   for (bool faces : {true, false})
     for (double tol : {1e-2, 1e-3})
       for (SpatialMode spatial : {SpatialMode::Off, SpatialMode::Mean, SpatialMode::Parallelogram, SpatialMode::Blend,
-                                  SpatialMode::Geometric}) {
+                                  SpatialMode::Geometric, SpatialMode::Fit}) {
         SCOPED_TRACE(std::string(faces ? "faces" : "curves") + " tol " + std::to_string(tol) + " spatial " +
                      std::to_string(int(spatial)));
         ResidualPlanOptions po;
@@ -363,7 +363,8 @@ PredictorPlan random_cluster_plan(uint32_t V, uint32_t F, std::mt19937& rng) {
     for (uint32_t j = 0; j < K; ++j) {
       std::array<PredictorChoice, 3> c;
       for (PredictorChoice& p : c) {
-        p.spatial = SpatialMode(rng() % (f == 0 ? kSpatialModeCount - 1 : kSpatialModeCount));  // no Geometric yet
+        p.spatial = SpatialMode(rng() % kSpatialModeCount);
+        if (f == 0 && uses_geometry(p.spatial)) p.spatial = SpatialMode::Blend;  // no geometry frame yet
         p.kind = f == 0 ? PredictorKind::None : PredictorKind(rng() % 3 == 0 ? 4 : rng() % 3);
         p.r0 = f == 0 ? 0 : uint32_t(rng() % f);
         p.g = f == 0 ? 0 : uint32_t(rng() % f);

@@ -60,8 +60,7 @@ constexpr double kBasisSnap = 0.75;
 void snap_basis_vector(const Traversal& t, const double* x_all, const int32_t* mean, SpatialMode mode, int32_t* qf) {
   const PredictorChoice choice[3] = {{PredictorKind::None, 0, 0, mode, 0}, {PredictorKind::None, 0, 0, mode, 0},
                                      {PredictorKind::None, 0, 0, mode, 0}};
-  std::vector<int32_t> weights;
-  if (mode == SpatialMode::Geometric) weights = geometric_weights(t, mean);
+  const std::vector<int32_t> weights = spatial_weights(t, mean, mode);
   const int32_t* w[3] = {weights.data(), weights.data(), weights.data()};
   auto zero = [](uint32_t, int) { return int64_t(0); };
   for (uint32_t pos = 0; pos < t.order.size(); ++pos) {

@@ -34,7 +34,7 @@ nlohmann::json predictor_use(const Model& m) {
   PredictorPlan plan;
   if (!decode_predictor_plan(m, &plan, &err, options, true)) return nullptr;
   static const char* kinds[] = {"none", "reference", "linear", "model", "motion"};
-  static const char* spatial[] = {"off", "mean", "parallelogram", "blend", "geometric"};
+  static const char* spatial[] = {"off", "mean", "parallelogram", "blend", "geometric", "fit"};
   static_assert(sizeof(spatial) / sizeof(spatial[0]) == kSpatialModeCount, "a name per spatial mode");
   auto count = [](nlohmann::json& j, const std::string& key) { j[key] = j.value(key, 0) + 1; };
   auto kind_name = [&](const PredictorChoice& c) {

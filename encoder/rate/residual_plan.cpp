@@ -293,7 +293,7 @@ std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint3
       const SpatialMode s = SpatialMode(m);
       // Geometric weights come from the reference pose, or the nearest decoded frame.
       const uint32_t g = has_reference(kind) ? r0 : below != none ? below : above;
-      const PredictorChoice c{kind, r0, r1, s, s == SpatialMode::Geometric ? g : 0};
+      const PredictorChoice c{kind, r0, r1, s, uses_geometry(s) ? g : 0};
       if (po.spatial_modes >> int(s) & 1 && predictor_usable(c, f, decoded, options)) out.push_back(c);
     }
   };
