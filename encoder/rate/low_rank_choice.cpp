@@ -30,6 +30,8 @@ constexpr uint32_t kScreenFrames = 24;
 // estimate is not unimodal in K (chicken-crossing at 1e-3: net saving falls from K = 1 to 6,
 // then rises to its best at K = 24).
 constexpr int kPatience = int(std::size(kComponentCounts));
+// Counts screened at every basis step (the best ones at the first step).
+constexpr int kRefinedCounts = 2;
 // The screening estimate ignores the coder's contexts and the per-cluster predictor choice,
 // so it misjudges savings both ways (it overstated them 1.15-1.25x on cantilever, neck and
 // blob; on chicken-crossing at 1e-3 it estimated 1.88x the section for K = 24 where the full
@@ -225,11 +227,11 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     return true;
   };
   // Every step below ranks the candidates of one anchor only.
-  auto best_of = [&](const GridComponents* pca, bool by_ratio) {
-    // by_ratio: saved bytes per section byte instead of net bytes.
+  auto best_of = [&](const GridComponents* pca, bool by_ratio, const std::vector<uint32_t>& skip = {}) {
+    // by_ratio: saved bytes per section byte instead of net bytes; skip: counts left out.
     const Candidate* best = nullptr;
     for (const Candidate& c : candidates) {
-      if (c.pca != pca) continue;
+      if (c.pca != pca || std::find(skip.begin(), skip.end(), c.model.components) != skip.end()) continue;
       if (!best || (by_ratio ? c.saved_bytes * best->section_bytes > best->saved_bytes * c.section_bytes
                              : c.net_bytes > best->net_bytes))
         best = &c;
@@ -256,14 +258,21 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
         ++worse;
       }
     }
-    // Other steps for the best count, unless even the coarsest could not pay: a coarser basis
-    // saves less, and its section shrinks by about the step ratio at most. When no count
-    // pays at the first step, the one that comes closest relative to its section: a coarser
-    // step may make it pay (the sheet at 1e-3, grid 4x: K = 48 at step 0.4).
-    const Candidate* first = best_of(&pca, false);
-    if (first && first->net_bytes <= 0) first = best_of(&pca, true);
-    if (first && first->saved_bytes > kFirstStep / kOtherSteps[std::size(kOtherSteps) - 1] * first->section_bytes) {
+    // Other steps for the best count and the runner-up, unless even the coarsest could not
+    // pay: a coarser basis saves less, and its section shrinks by about the step ratio at
+    // most. When no count pays at the first step, the one that comes closest relative to
+    // its section: a coarser step may make it pay (the sheet at 1e-3, grid 4x: K = 48 at
+    // step 0.4). The runner-up too, since the first step's ranking is close and the best
+    // step differs by count: horse-gallop at 1e-3 (grid 2x) ranks K = 3 and K = 1 within
+    // 250 bytes at step 0.15; K = 1 at step 1 codes 85,910 bytes, K = 3 at its best 88,463.
+    std::vector<uint32_t> refined;
+    for (int round = 0; round < kRefinedCounts; ++round) {
+      const Candidate* first = best_of(&pca, false, refined);
+      if (first && first->net_bytes <= 0) first = best_of(&pca, true, refined);
+      if (!first) break;
       const uint32_t K = first->model.components;  // try_candidate may move the candidates
+      refined.push_back(K);
+      if (first->saved_bytes <= kFirstStep / kOtherSteps[std::size(kOtherSteps) - 1] * first->section_bytes) continue;
       for (double step : kOtherSteps) {
         bool screened = false;
         if (!try_candidate(pca, K, step, &screened)) return false;
@@ -337,9 +346,14 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   // 58,404 bytes against the first frame's 60,078, and the grid search then stopped at 4x
   // (58,190 against 57,351).
   std::vector<std::pair<const GridComponents*, uint32_t>> tried;  // anchor, count
+  // An anchor whose first trial saved less than half its estimate gets a second one, of
+  // another count: the estimate misjudged that count, maybe not the next (horse-gallop at
+  // 1e-3, grid 2x: K = 3 estimated 8,730 bytes net and saved 90; K = 1 then saved 2,643).
+  std::vector<const GridComponents*> disappointed;
   for (const Candidate& c : candidates) {
     const auto same_anchor = [&](const std::pair<const GridComponents*, uint32_t>& t) { return t.first == c.pca; };
-    if (uint32_t(std::count_if(tried.begin(), tried.end(), same_anchor)) >= options.max_trials) continue;
+    const uint32_t allowed = options.max_trials + uint32_t(std::count(disappointed.begin(), disappointed.end(), c.pca));
+    if (uint32_t(std::count_if(tried.begin(), tried.end(), same_anchor)) >= allowed) continue;
     if (!forced && c.saved_bytes <= (cheap ? kCheapTrialSavingFactor : kTrialSavingFactor) * c.section_bytes) continue;
     // A second trial of the same count at another step mostly repeats the first's error.
     if (std::find(tried.begin(), tried.end(), std::make_pair(c.pca, c.model.components)) != tried.end()) continue;
@@ -350,6 +364,9 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
       return false;
     ++rep.trials;
     const uint64_t bytes = write_container(trial, write_options).size();
+    const bool first_of_anchor = std::count_if(tried.begin(), tried.end(), same_anchor) == 1;
+    if (!forced && first_of_anchor && double(rep.bytes_without) - double(bytes) < 0.5 * c.net_bytes)
+      disappointed.push_back(c.pca);
     if (bytes < best) {
       best = bytes;
       best_model = std::move(trial);
