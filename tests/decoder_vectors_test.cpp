@@ -91,25 +91,18 @@ std::vector<Vector> recipes() {
   model_only.residual = ResidualLayer{};
   v.push_back({"model_only", model_only, {}});
 
-  // Every frame after the first predicted from the one before with Geometric weights
-  // taken from that frame's shape (format 2.1).
-  Model geometric = testing::sheet_model(5, 6);
-  geometric.faces = traversal_order(geometric.faces);
-  std::vector<PredictorChoice> choices(3, PredictorChoice{PredictorKind::None, 0, 0, SpatialMode::Parallelogram, 0});
-  for (uint32_t f = 1; f < 6; ++f)
-    choices.insert(choices.end(), 3, PredictorChoice{PredictorKind::Reference, f - 1, 0, SpatialMode::Geometric, f - 1});
-  const PredictorPlan geometric_plan = uniform_plan({0, 1, 2, 3, 4, 5}, choices);
-  geometric.residual.payload = encode_residuals(geometric, testing::grid(geometric.meta.vertex_count, 6), &geometric_plan);
-  v.push_back({"geometric", geometric, {}});
-
-  // The same frames with Fit weights from the frame before (format 2.4).
-  Model fit = geometric;
-  std::vector<PredictorChoice> fit_choices(3, PredictorChoice{PredictorKind::None, 0, 0, SpatialMode::Parallelogram, 0});
-  for (uint32_t f = 1; f < 6; ++f)
-    fit_choices.insert(fit_choices.end(), 3, PredictorChoice{PredictorKind::Reference, f - 1, 0, SpatialMode::Fit, f - 1});
-  const PredictorPlan fit_plan = uniform_plan({0, 1, 2, 3, 4, 5}, fit_choices);
-  fit.residual.payload = encode_residuals(fit, testing::grid(fit.meta.vertex_count, 6), &fit_plan);
-  v.push_back({"fit", fit, {}});
+  // Every frame after the first predicted from the one before with a spatial mode whose
+  // weights come from that frame's shape: Geometric (format 2.1) and Fit (2.4).
+  for (SpatialMode mode : {SpatialMode::Geometric, SpatialMode::Fit}) {
+    Model m = testing::sheet_model(5, 6);
+    m.faces = traversal_order(m.faces);
+    std::vector<PredictorChoice> choices(3, PredictorChoice{PredictorKind::None, 0, 0, SpatialMode::Parallelogram, 0});
+    for (uint32_t f = 1; f < 6; ++f)
+      choices.insert(choices.end(), 3, PredictorChoice{PredictorKind::Reference, f - 1, 0, mode, f - 1});
+    const PredictorPlan plan = uniform_plan({0, 1, 2, 3, 4, 5}, choices);
+    m.residual.payload = encode_residuals(m, testing::grid(m.meta.vertex_count, 6), &plan);
+    v.push_back({mode == SpatialMode::Fit ? "fit" : "geometric", m, {}});
+  }
 
   // One-point curves and no segments: neither CURV nor SEGS is written (format 2.2).
   Model point_curves = small_model(4);
