@@ -27,7 +27,7 @@ struct ResidualPlanOptions {
   // Frames no allowed kind can serve (frame 0 without None or Model...) fall back to None
   // without spatial correction. For tests and studies.
   uint32_t kinds = ~0u;
-  uint32_t spatial_modes = ~(1u << int(SpatialMode::Fit));
+  uint32_t spatial_modes = ~0u;
   // Per-cluster predictors (encoder/rate/cluster_plan.h), each layout tried on the chosen
   // coding order (the smallest coded payload wins, one predictor per frame included):
   // traversal positions per cluster (>= 1), clusters per motion map (>= 1) and the similar
