@@ -192,9 +192,7 @@ void triple_weights(const int32_t* qg, uint32_t v, uint32_t a, uint32_t b, uint3
   w[0] = clamp_weight(detail::rounded_mean(kGeometricUnit * (g22 * r1 - g12 * r2), det));
   w[1] = clamp_weight(detail::rounded_mean(kGeometricUnit * (g11 * r2 - g12 * r1), det));
 }
-}  // namespace
 
-namespace {
 int bit_length(int64_t x) {
   int b = 0;
   while (b < 63 && (x >> b) != 0) ++b;
@@ -270,7 +268,7 @@ std::vector<int32_t> geometric_weights(const Traversal& t, const int32_t* qg) {
   return w;
 }
 
-const int32_t* GeometricWeightsCache::get(const Traversal& t, const int32_t* q, uint32_t g, SpatialMode mode) {
+const int32_t* SpatialWeightsCache::get(const Traversal& t, const int32_t* q, uint32_t g, SpatialMode mode) {
   // Least recently used goes first, so the (up to three) frames one cluster asked for last
   // stay valid while it asks for another.
   size_t i = 0;
@@ -282,15 +280,16 @@ const int32_t* GeometricWeightsCache::get(const Traversal& t, const int32_t* q, 
     entries_.push_back({g, {}, {false, false}});
   }
   Entry& e = entries_.back();
-  const size_t which = mode == SpatialMode::Fit ? 1 : 0;
-  if (!e.done[which]) {
-    e.tables[which] = spatial_weights(t, q + size_t(g) * t.order.size() * 3, which ? SpatialMode::Fit : SpatialMode::Geometric);
-    e.done[which] = true;
+  const bool fit = mode == SpatialMode::Fit;
+  if (!e.done[fit]) {
+    const int32_t* qg = q + size_t(g) * t.order.size() * 3;
+    e.tables[fit] = fit ? fit_weights(t, qg) : geometric_weights(t, qg);
+    e.done[fit] = true;
   }
-  return e.tables[which].data();
+  return e.tables[fit].data();
 }
 
-void GeometricWeightsCache::for_choice(const Traversal& t, const int32_t* q, const PredictorChoice* choice,
+void SpatialWeightsCache::for_choice(const Traversal& t, const int32_t* q, const PredictorChoice* choice,
                                        const int32_t* out[3]) {
   for (int a = 0; a < 3; ++a)
     out[a] = uses_geometry(choice[a].spatial) ? get(t, q, choice[a].g, choice[a].spatial) : nullptr;

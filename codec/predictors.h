@@ -148,7 +148,7 @@ std::vector<int32_t> spatial_weights(const Traversal& t, const int32_t* qg, Spat
 
 // The weight tables of the last few geometry frames one walk used: a frame's candidates,
 // and the next frames, mostly share them. Values of a frame must not change once asked for.
-class GeometricWeightsCache {
+class SpatialWeightsCache {
  public:
   // Weights of `mode` (Geometric or Fit) of frame g of q (frame-major, V vertices); valid
   // until kCapacity other frames were asked for.

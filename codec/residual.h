@@ -29,7 +29,7 @@ struct FramePredictors {
 };
 constexpr uint32_t kMaxCandidates = 16;
 // Distinct Geometric and Fit geometry frames among one frame's candidates: each costs the decoder
-// a table of weights (GeometricWeightsCache holds this many), so the bound keeps decoding
+// a table of weights (SpatialWeightsCache holds this many), so the bound keeps decoding
 // linear in the frame's size whatever the file asks for.
 constexpr uint32_t kMaxGeometryFrames = 8;
 

@@ -291,7 +291,7 @@ std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint3
     if (!(po.kinds >> int(kind) & 1)) return;
     for (uint8_t m = 0; m < kSpatialModeCount; ++m) {
       const SpatialMode s = SpatialMode(m);
-      // Geometric weights come from the reference pose, or the nearest decoded frame.
+      // Geometric and Fit weights come from the reference pose, or the nearest decoded frame.
       const uint32_t g = has_reference(kind) ? r0 : below != none ? below : above;
       const PredictorChoice c{kind, r0, r1, s, uses_geometry(s) ? g : 0};
       if (po.spatial_modes >> int(s) & 1 && predictor_usable(c, f, decoded, options)) out.push_back(c);
@@ -380,7 +380,7 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
   std::vector<uint8_t> magnitude(stride);  // by vertex, clamped
   std::vector<int32_t> scratch(stride), best_frame(stride);
   double total = 0;
-  GeometricWeightsCache geometry;
+  SpatialWeightsCache geometry;
   std::vector<AxisRun> runs;
   RunningBits running(stride);
   PredictorChoice last_winner{PredictorKind::None, 0, 0, SpatialMode::Off};
