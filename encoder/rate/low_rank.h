@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "codec/model.h"
+#include "codec/predictors.h"
 
 namespace dcurve {
 
