@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <deque>
 
+#include "codec/crc32.h"
+
 namespace dcurve {
 namespace {
 
@@ -146,7 +148,12 @@ Traversal traversal_from_curves(const Model& m) {
 }  // namespace
 
 Traversal build_traversal(const Model& model) {
-  return model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);
+  Traversal t = model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);
+  uint32_t crc = 0;
+  for (const std::vector<uint32_t>* a : {&t.order, &t.nb_offsets, &t.nb, &t.para_offsets, &t.para, &t.fit_offsets, &t.fit})
+    crc = crc32c(a->data(), a->size() * sizeof(uint32_t), crc);
+  t.fingerprint = crc | 1;  // never 0
+  return t;
 }
 
 const Traversal& traversal_for(const Model& model, const ResidualOptions& options, Traversal* owned) {
@@ -277,16 +284,16 @@ const int32_t* SpatialWeightsCache::get(const Traversal& t, const int32_t* q, ui
     std::rotate(entries_.begin() + std::ptrdiff_t(i), entries_.begin() + std::ptrdiff_t(i) + 1, entries_.end());
   } else {
     if (entries_.size() >= kCapacity) entries_.erase(entries_.begin());
-    entries_.push_back({g, {}, {false, false}});
+    entries_.push_back({g, {}});
   }
   Entry& e = entries_.back();
   const bool fit = mode == SpatialMode::Fit;
-  if (!e.done[fit]) {
+  if (!e.tables[fit]) {
     const int32_t* qg = q + size_t(g) * t.order.size() * 3;
-    e.tables[fit] = fit ? fit_weights(t, qg) : geometric_weights(t, qg);
-    e.done[fit] = true;
+    e.tables[fit] = source_ ? source_->weights(t, qg, mode)
+                            : std::make_shared<const std::vector<int32_t>>(spatial_weights(t, qg, mode));
   }
-  return e.tables[fit].data();
+  return e.tables[fit]->data();
 }
 
 void SpatialWeightsCache::for_choice(const Traversal& t, const int32_t* q, const PredictorChoice* choice,

@@ -4,6 +4,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,9 @@ struct Traversal {
   std::vector<uint32_t> fit_offsets;
   std::vector<uint32_t> fit;
   bool from_faces = false;
+  // CRC-32C of the arrays above (build_traversal sets it): tells a SpatialWeightsSource
+  // which mesh a table belongs to. 0: not computed (such a traversal is never shared).
+  uint32_t fingerprint = 0;
 };
 
 // Vertices in one position's Fit set, at most.
@@ -88,6 +92,8 @@ constexpr uint32_t kMaxFitPoints = 16;
 // Needs a validated model.
 Traversal build_traversal(const Model& model);
 
+class SpatialWeightsSource;
+
 // Extra inputs to the residual layer that are not in the payload.
 struct ResidualOptions {
   // Model predictor values, frame-major ((f * V + v) * 3 + axis), grid units; null when
@@ -96,6 +102,9 @@ struct ResidualOptions {
   // build_traversal(model) of the model the call codes, when the caller reuses one across
   // calls (it depends only on V and the faces or curves); null: each call builds its own.
   const Traversal* traversal = nullptr;
+  // Where walks get their spatial weight tables (null: each walk computes its own). Changes
+  // no value, only how often the same table is computed.
+  SpatialWeightsSource* weights_source = nullptr;
 };
 
 // options.traversal when set, else build_traversal(model) stored in *owned.
@@ -146,10 +155,23 @@ std::vector<int32_t> fit_weights(const Traversal& t, const int32_t* qg);
 // that use none.
 std::vector<int32_t> spatial_weights(const Traversal& t, const int32_t* qg, SpatialMode mode);
 
+// Weight tables shared beyond one walk: an encoder's trial walks meet the same decoded
+// geometry frames again and again (horse-gallop at --grid 2: 5,519 tables computed, 1,851
+// distinct). weights() must return exactly spatial_weights(t, qg, mode); it may be called
+// from several threads at once.
+class SpatialWeightsSource {
+ public:
+  virtual ~SpatialWeightsSource() = default;
+  virtual std::shared_ptr<const std::vector<int32_t>> weights(const Traversal& t, const int32_t* qg,
+                                                              SpatialMode mode) = 0;
+};
+
 // The weight tables of the last few geometry frames one walk used: a frame's candidates,
 // and the next frames, mostly share them. Values of a frame must not change once asked for.
 class SpatialWeightsCache {
  public:
+  // source (may be null): asked for every table this cache does not hold.
+  explicit SpatialWeightsCache(SpatialWeightsSource* source = nullptr) : source_(source) {}
   // Weights of `mode` (Geometric or Fit) of frame g of q (frame-major, V vertices); valid
   // until kCapacity other frames were asked for.
   const int32_t* get(const Traversal& t, const int32_t* q, uint32_t g, SpatialMode mode = SpatialMode::Geometric);
@@ -162,10 +184,10 @@ class SpatialWeightsCache {
   static constexpr size_t kCapacity = 8;
   struct Entry {
     uint32_t g;
-    std::vector<int32_t> tables[2];  // Geometric, Fit: each computed when first asked for
-    bool done[2];
+    std::shared_ptr<const std::vector<int32_t>> tables[2];  // Geometric, Fit: each when first asked for
   };
   std::vector<Entry> entries_;  // most recent last
+  SpatialWeightsSource* source_;
 };
 
 // The spatial correction of traversal position `pos` on `axis`: see SpatialMode. qf is

@@ -70,7 +70,7 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
   std::vector<int64_t> base;
   std::vector<int8_t> res(stride * plan.order.size(), 0);
   const int8_t* previous = nullptr;  // residuals of the frame coded last
-  SpatialWeightsCache geometry;
+  SpatialWeightsCache geometry(options.weights_source);
   if constexpr (kDecode) plan.stream_bytes.assign(plan.order.size(), 0);
   for (uint32_t f : plan.order) {
     [[maybe_unused]] size_t frame_start = 0;

@@ -20,6 +20,7 @@
 #include "encoder/rate/motion_choice.h"
 #include "encoder/rate/motion_model.h"
 #include "encoder/rate/residual_plan.h"
+#include "encoder/rate/weights_store.h"
 
 namespace dcurve {
 namespace {
@@ -72,11 +73,12 @@ Curves file_curves(const Animation& anim, const EncodeOptions& opt, std::string*
 }
 
 // What both encodes share: metadata, faces, the plain file's curves, the residual grid and
-// its rounded values.
+// its rounded values, and the spatial weight tables its walks solved.
 struct GridStart {
   Model model;
   std::vector<int32_t> rounded;
   double snap = 0;
+  SpatialWeightsSource* weights = nullptr;
 };
 
 // The encode without a PDE model: the residual layer alone, with a low-rank model where it
@@ -89,8 +91,10 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   std::vector<int32_t> q = start.rounded;
   ResidualPlanOptions po;
   po.threads = opt.threads;
-  const PredictorPlan plan = choose_plan_and_grid(*m, anim.frames, start.snap, &q, {}, po);
-  m->residual.payload = encode_residuals(*m, q, &plan);
+  ResidualOptions ro;
+  ro.weights_source = start.weights;
+  const PredictorPlan plan = choose_plan_and_grid(*m, anim.frames, start.snap, &q, ro, po);
+  m->residual.payload = encode_residuals(*m, q, &plan, ro);
   if (m->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
   if (residual_only) *residual_only = *m;
   WriteOptions wo;
@@ -99,6 +103,7 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   lro.components = opt.low_rank;
   lro.first_frame_anchor = opt.low_rank_first_frame;
   lro.threads = opt.threads;
+  lro.weights = start.weights;
   LowRankChoiceReport rep;
   if (!choose_low_rank(m, anim.frames, start.rounded, start.snap, wo, lro, &rep, error)) return false;
   if (bytes) *bytes = rep.bytes;
@@ -137,6 +142,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                     s.model.meta.frame_count = uint32_t(part.frames.size());
                     s.model.residual = grid;
                     s.snap = out->snap;
+                    s.weights = out->weights;
                     if (!quantize_to_grid(part, grid, &s.rounded, nullptr)) return SIZE_MAX;
                     EncodeOptions o = plain_opt;
                     o.threads = threads;
@@ -214,7 +220,9 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (!(bbox_diagonal(anim.frames[0]) > 0)) return fail(error, "rest pose has a zero bounding box (all vertices coincide)");
 
   EncodeReport rep;
+  SpatialWeightsStore weights;
   GridStart start;
+  start.weights = &weights;
   Model m, residual_only;
   bool have_plain = false;
   if (!start_model(anim, opt, &start, &m, &residual_only, &have_plain, &rep.curve_fallback, error)) return false;

@@ -143,7 +143,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
   std::vector<int32_t> orig(stride), best_values;
   std::vector<std::pair<int, int64_t>> trial_res, best_res;  // (context, residual) of the cluster
   CostTable table;
-  SpatialWeightsCache geometry;
+  SpatialWeightsCache geometry(options.weights_source);
   for (uint32_t f : order) {
     int32_t* qf = q->data() + size_t(f) * stride;
     const float* input = frames[f].data();

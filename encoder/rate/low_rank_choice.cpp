@@ -118,11 +118,13 @@ FrameSample sample_frames(const Model& model, const std::vector<std::vector<floa
 // 113,737, the other eight inputs the same files.
 bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>& frames,
                             const std::vector<int32_t>& rounded, double snap_distance,
-                            const ResidualPlanOptions& plan_options, std::string* error) {
+                            const ResidualPlanOptions& plan_options, SpatialWeightsSource* weights,
+                            std::string* error) {
   std::vector<int32_t> prediction;
   if (!model_grid_prediction(*trial, UINT64_MAX, &prediction, error)) return false;
   ResidualOptions ro;
   ro.model_prediction = &prediction;
+  ro.weights_source = weights;
   const size_t orders = plan_options.gop_sizes.size();
   std::vector<std::vector<uint8_t>> payloads(orders);
   // The orders run side by side and share the threads.
@@ -219,6 +221,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
                      prediction.begin() + std::ptrdiff_t((f + 1) * n));
     ResidualOptions ro;
     ro.model_prediction = &sampled;
+    ro.weights_source = options.weights;
     const PredictorPlan plan = choose_plan_and_grid(sample.model, sample.input, snap_distance, &q, ro, screen);
     const std::vector<double> bits = frame_bits(sample.model, q, plan, ro);
     double saved = 0;
@@ -363,7 +366,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     tried.emplace_back(c.pca, c.model.components);
     Model trial = *model;
     trial.low_rank = c.model;
-    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, error))
+    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, options.weights, error))
       return false;
     ++rep.trials;
     const uint64_t bytes = write_container(trial, write_options).size();

@@ -8,6 +8,7 @@
 
 #include "codec/container.h"
 #include "codec/model.h"
+#include "codec/predictors.h"
 
 namespace dcurve {
 
@@ -25,6 +26,8 @@ struct LowRankChoiceOptions {
   // Also screen components around the first frame, besides around the frame average.
   bool first_frame_anchor = true;
   int threads = 0;  // 0: all cores; the result never depends on it
+  // The encode's shared spatial weight tables (may be null; the result never depends on it).
+  SpatialWeightsSource* weights = nullptr;
 };
 
 struct LowRankChoiceReport {

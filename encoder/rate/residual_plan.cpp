@@ -380,7 +380,7 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
   std::vector<uint8_t> magnitude(stride);  // by vertex, clamped
   std::vector<int32_t> scratch(stride), best_frame(stride);
   double total = 0;
-  SpatialWeightsCache geometry;
+  SpatialWeightsCache geometry(options.weights_source);
   std::vector<AxisRun> runs;
   RunningBits running(stride);
   PredictorChoice last_winner{PredictorKind::None, 0, 0, SpatialMode::Off};
