@@ -148,17 +148,20 @@ Traversal traversal_from_curves(const Model& m) {
 }  // namespace
 
 Traversal build_traversal(const Model& model) {
-  Traversal t = model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);
-  uint32_t crc = 0;
-  for (const std::vector<uint32_t>* a : {&t.order, &t.nb_offsets, &t.nb, &t.para_offsets, &t.para, &t.fit_offsets, &t.fit})
-    crc = crc32c(a->data(), a->size() * sizeof(uint32_t), crc);
-  t.fingerprint = crc | 1;  // never 0
-  return t;
+  return model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);
 }
 
 const Traversal& traversal_for(const Model& model, const ResidualOptions& options, Traversal* owned) {
   if (options.traversal) return *options.traversal;
   *owned = build_traversal(model);
+  // Only walks that share tables need the mesh told apart; a decoder's never do.
+  if (options.weights_source) {
+    uint32_t crc = 0;
+    for (const std::vector<uint32_t>* a :
+         {&owned->order, &owned->nb_offsets, &owned->nb, &owned->para_offsets, &owned->para, &owned->fit_offsets, &owned->fit})
+      crc = crc32c(a->data(), a->size() * sizeof(uint32_t), crc);
+    owned->fingerprint = crc | 1;  // never 0
+  }
   return *owned;
 }
 

@@ -77,8 +77,9 @@ struct Traversal {
   std::vector<uint32_t> fit_offsets;
   std::vector<uint32_t> fit;
   bool from_faces = false;
-  // CRC-32C of the arrays above (build_traversal sets it): tells a SpatialWeightsSource
-  // which mesh a table belongs to. 0: not computed (such a traversal is never shared).
+  // CRC-32C of the arrays above, set by traversal_for for walks that draw on a
+  // SpatialWeightsSource: tells the source which mesh a table belongs to. 0: not computed
+  // (build_traversal alone; such a traversal's tables are never shared).
   uint32_t fingerprint = 0;
 };
 
@@ -107,7 +108,8 @@ struct ResidualOptions {
   SpatialWeightsSource* weights_source = nullptr;
 };
 
-// options.traversal when set, else build_traversal(model) stored in *owned.
+// options.traversal when set, else build_traversal(model) stored in *owned, with its
+// fingerprint when options.weights_source is set.
 const Traversal& traversal_for(const Model& model, const ResidualOptions& options, Traversal* owned);
 
 // Whether `c` can be used for frame f: its reference frames are decoded (decoded[r] != 0,

@@ -19,13 +19,28 @@ namespace {
 using testing::grid;
 using testing::sheet_model;
 
+// The traversal a walk drawing on `source` gets: fingerprinted, so its tables can be shared.
+Traversal shared_traversal(const Model& m, SpatialWeightsSource* source) {
+  ResidualOptions options;
+  options.weights_source = source;
+  Traversal owned;
+  traversal_for(m, options, &owned);
+  return owned;
+}
+
 TEST(SpatialWeightsStore, ReusesOnlyTablesOfTheSameMeshModeAndValues) {
   const Model m = sheet_model(9, 3);
-  const Traversal t = build_traversal(m);
+  SpatialWeightsStore store;
+  const Traversal t = shared_traversal(m, &store);
   ASSERT_NE(t.fingerprint, 0u);
   const std::vector<int32_t> q = grid(m.meta.vertex_count, 3);
   const int32_t* f1 = q.data() + t.order.size() * 3;
-  SpatialWeightsStore store;
+  // A traversal nobody fingerprinted (a decoder's): its tables are solved, never shared.
+  const Traversal plain = build_traversal(m);
+  ASSERT_EQ(plain.fingerprint, 0u);
+  for (int i = 0; i < 2; ++i)
+    EXPECT_EQ(*store.weights(plain, f1, SpatialMode::Fit), spatial_weights(plain, f1, SpatialMode::Fit));
+  EXPECT_EQ(store.computed() + store.reused(), 0u);
   for (SpatialMode mode : {SpatialMode::Fit, SpatialMode::Geometric}) {
     const auto first = store.weights(t, f1, mode);
     EXPECT_EQ(*first, spatial_weights(t, f1, mode));
@@ -42,7 +57,7 @@ TEST(SpatialWeightsStore, ReusesOnlyTablesOfTheSameMeshModeAndValues) {
   // are the same.
   Model other = m;
   other.faces.resize(other.faces.size() - 6);
-  const Traversal u = build_traversal(other);
+  const Traversal u = shared_traversal(other, &store);
   ASSERT_NE(u.fingerprint, t.fingerprint);
   EXPECT_EQ(*store.weights(u, f1, SpatialMode::Fit), spatial_weights(u, f1, SpatialMode::Fit));
   EXPECT_EQ(store.computed(), 4u);
@@ -51,12 +66,13 @@ TEST(SpatialWeightsStore, ReusesOnlyTablesOfTheSameMeshModeAndValues) {
 
 TEST(SpatialWeightsStore, DropsTheLeastRecentlyUsedBeyondItsBudget) {
   const Model m = sheet_model(9, 4);
-  const Traversal t = build_traversal(m);
   const std::vector<int32_t> q = grid(m.meta.vertex_count, 4);
-  const size_t n = t.order.size() * 3;
+  const Traversal sized = build_traversal(m);
+  const size_t n = sized.order.size() * 3;
   // Room for about two Fit entries (table and key values).
-  const size_t entry = (spatial_weights(t, q.data(), SpatialMode::Fit).size() + n) * sizeof(int32_t);
+  const size_t entry = (spatial_weights(sized, q.data(), SpatialMode::Fit).size() + n) * sizeof(int32_t);
   SpatialWeightsStore store(2 * entry + entry / 2);
+  const Traversal t = shared_traversal(m, &store);
   auto ask = [&](uint32_t f) {
     const int32_t* qf = q.data() + f * n;
     const auto w = store.weights(t, qf, SpatialMode::Fit);
@@ -81,10 +97,10 @@ TEST(SpatialWeightsStore, DropsTheLeastRecentlyUsedBeyondItsBudget) {
 
 TEST(SpatialWeightsStore, ServesThreadsAtOnce) {
   const Model m = sheet_model(12, 4);
-  const Traversal t = build_traversal(m);
   const std::vector<int32_t> q = grid(m.meta.vertex_count, 4);
-  const size_t n = t.order.size() * 3;
   SpatialWeightsStore store;
+  const Traversal t = shared_traversal(m, &store);
+  const size_t n = t.order.size() * 3;
   std::vector<std::thread> threads;
   std::vector<int> wrong(4, 0);
   for (int k = 0; k < 4; ++k)
