@@ -33,11 +33,7 @@ using testing::RawSection;
 Animation bending_sheet(uint32_t W, uint32_t H, uint32_t F) {
   Animation anim;
   anim.vertex_count = W * H;
-  for (uint32_t y = 0; y + 1 < H; ++y)
-    for (uint32_t x = 0; x + 1 < W; ++x) {
-      const uint32_t v = y * W + x;
-      anim.faces.insert(anim.faces.end(), {v, v + 1, v + W, v + 1, v + W + 1, v + W});
-    }
+  anim.faces = test::grid_faces(W, H);
   for (uint32_t f = 0; f < F; ++f) {
     const double t = 2 * M_PI * f / F;
     std::vector<float> xyz;
@@ -100,26 +96,6 @@ Model encoded_model(const Animation& anim, int K, std::vector<uint8_t>* bytes, b
   EXPECT_TRUE(read_container(bytes->data(), bytes->size(), &m, &err)) << err;
   EXPECT_EQ(m.low_rank.components, uint32_t(K));
   return m;
-}
-
-// Largest vertex error of the decoded file over all frames, as a fraction of L.
-double decoded_max_error(const std::vector<uint8_t>& bytes, const Animation& anim) {
-  std::string err;
-  auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &err);
-  EXPECT_TRUE(dec) << err;
-  if (!dec) return HUGE_VAL;
-  const double L = bbox_diagonal(anim.frames[0]);
-  double worst = 0;
-  std::vector<float> xyz(size_t(anim.vertex_count) * 3);
-  for (uint32_t f = 0; f < anim.frames.size(); ++f) {
-    dec->evaluate_frame(f, xyz.data());
-    for (size_t v = 0; v < anim.vertex_count; ++v) {
-      double d2 = 0;
-      for (int a = 0; a < 3; ++a) d2 += std::pow(double(xyz[3 * v + a]) - anim.frames[f][3 * v + a], 2);
-      worst = std::max(worst, std::sqrt(d2) / L);
-    }
-  }
-  return worst;
 }
 
 std::vector<uint8_t> raw_payload(const RawSection& s) {
@@ -264,10 +240,10 @@ TEST(LowRank, ChosenOnALowRankAnimationAndWithinToleranceEveryFrame) {
   EXPECT_GT(with.low_rank_components, 0u);
   EXPECT_EQ(without.low_rank_components, 0u);
   EXPECT_LT(auto_bytes.size(), off_bytes.size());
-  EXPECT_LE(decoded_max_error(auto_bytes, anim), 1e-3);
+  EXPECT_LE(test::decoded_max_error(auto_bytes, anim), 1e-3);
   const std::vector<uint8_t> forced = encode(anim, 5, &with);
   EXPECT_EQ(with.low_rank_components, 5u);
-  EXPECT_LE(decoded_max_error(forced, anim), 1e-3);
+  EXPECT_LE(test::decoded_max_error(forced, anim), 1e-3);
 }
 
 TEST(LowRank, BuiltinSceneWithinToleranceEveryFrame) {
@@ -278,7 +254,7 @@ TEST(LowRank, BuiltinSceneWithinToleranceEveryFrame) {
     if (k > 0) {
       EXPECT_EQ(rep.low_rank_components, uint32_t(k));
     }
-    EXPECT_LE(decoded_max_error(bytes, anim), 1e-3) << "low_rank " << k;
+    EXPECT_LE(test::decoded_max_error(bytes, anim), 1e-3) << "low_rank " << k;
   }
 }
 
@@ -305,7 +281,7 @@ TEST(LowRank, FindsACountBetweenTheListedOnes) {
   EncodeReport rep;
   const std::vector<uint8_t> bytes = encode(anim, -1, &rep);
   EXPECT_EQ(rep.low_rank_components, modes);
-  EXPECT_LE(decoded_max_error(bytes, anim), 1e-3);
+  EXPECT_LE(test::decoded_max_error(bytes, anim), 1e-3);
 }
 
 // A regular rest pose that a low-rank motion roughens: the frame average carries the
@@ -332,8 +308,8 @@ TEST(LowRank, FirstFrameAnchorWinsWhereTheAverageIsRough) {
   const std::vector<uint8_t> average_bytes = encode(anim, -1, &average, false);
   EXPECT_GT(both.low_rank_components, 0u);
   EXPECT_LT(double(both_bytes.size()), 0.9 * double(average_bytes.size())) << average_bytes.size();
-  EXPECT_LE(decoded_max_error(both_bytes, anim), 1e-3);
-  EXPECT_LE(decoded_max_error(average_bytes, anim), 1e-3);
+  EXPECT_LE(test::decoded_max_error(both_bytes, anim), 1e-3);
+  EXPECT_LE(test::decoded_max_error(average_bytes, anim), 1e-3);
 }
 
 TEST(LowRank, PredictionIsTheSameOnEveryPath) {

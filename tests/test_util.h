@@ -1,13 +1,20 @@
 // Helpers shared by the tests: reading a few frames of the real corpus, simulating a
-// shortened built-in scene, a scratch folder (running the CLI: cli_util.h).
+// shortened built-in scene, the decoded error of a file, a scratch folder (running the CLI:
+// cli_util.h).
 #pragma once
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
 
+#include "decoder/dcurve.hpp"
 #include "encoder/io/frames.h"
+#include "encoder/metrics.h"
 #include "encoder/sim/scene.h"
 
 namespace dcurve::test {
@@ -41,6 +48,38 @@ inline Animation simulate_builtin(const std::string& name, uint32_t frames) {
   Animation anim;
   if (!simulate_scene(scene, &anim, {}, &err)) throw std::runtime_error(err);
   return anim;
+}
+
+// The faces of a W x H grid of vertices numbered row by row, two triangles per cell.
+inline std::vector<uint32_t> grid_faces(uint32_t W, uint32_t H) {
+  std::vector<uint32_t> faces;
+  for (uint32_t y = 0; y + 1 < H; ++y)
+    for (uint32_t x = 0; x + 1 < W; ++x) {
+      const uint32_t v = y * W + x;
+      faces.insert(faces.end(), {v, v + 1, v + W, v + 1, v + W + 1, v + W});
+    }
+  return faces;
+}
+
+// Largest vertex error over all frames of `bytes` decoded by the runtime decoder against
+// anim, as a fraction of L (HUGE_VAL, and a test failure, when it does not open).
+inline double decoded_max_error(const std::vector<uint8_t>& bytes, const Animation& anim) {
+  std::string err;
+  auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &err);
+  EXPECT_TRUE(dec) << err;
+  if (!dec) return HUGE_VAL;
+  const double L = bbox_diagonal(anim.frames[0]);
+  double worst = 0;
+  std::vector<float> xyz(size_t(anim.vertex_count) * 3);
+  for (uint32_t f = 0; f < anim.frames.size(); ++f) {
+    dec->evaluate_frame(f, xyz.data());
+    for (size_t v = 0; v < anim.vertex_count; ++v) {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a) d2 += std::pow(double(xyz[3 * v + a]) - anim.frames[f][3 * v + a], 2);
+      worst = std::max(worst, std::sqrt(d2) / L);
+    }
+  }
+  return worst;
 }
 
 // A unit square as two triangles in a text format ("obj", "off" or "ply"), its second

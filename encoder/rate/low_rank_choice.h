@@ -25,6 +25,9 @@ struct LowRankChoiceOptions {
   uint32_t max_trials = 1;
   // Also screen components around the first frame, besides around the frame average.
   bool first_frame_anchor = true;
+  // Screen the counts whose section outweighs today's residual payload at the first basis
+  // step at coarser steps, and give the best of them a trial of its own.
+  bool rescue_cut_counts = true;
   int threads = 0;  // 0: all cores; the result never depends on it
   // The encode's shared spatial weight tables (may be null; the result never depends on it).
   SpatialWeightsSource* weights = nullptr;
@@ -34,6 +37,7 @@ struct LowRankChoiceReport {
   uint32_t components = 0;       // K of the model kept, 0 when none
   double basis_step = 0;         // grid units
   uint32_t screened = 0, trials = 0;
+  bool rescued = false;          // the model kept is one of those rescue_cut_counts screened
   uint64_t bytes_without = 0;    // the whole file without a low-rank model
   uint64_t bytes = 0;            // the whole file kept (bytes_without when it has no model)
 };
