@@ -267,6 +267,41 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
       if (c.pca == pca && (!best || c.net_bytes > best->net_bytes)) best = &c;
     return best;
   };
+  // Counts the first step cut off (from counts[cut] on, ascending), each at the first coarser
+  // step where its section fits, set apart (`rescued`) so that nothing else changes: the
+  // first step's cut can hide the best count of an anchor (the sheet at 1e-3, grid 8x: the
+  // frame-0 anchor's K = 56 codes 46,569 bytes, while its trials of the counts screened,
+  // K = 1 and 2, coded 63,448 and 64,280), but ranking the rescued counts with the others
+  // moved the trials elsewhere (blob 11,638 -> 11,749 bytes, rope-small 19,791 -> 19,852,
+  // horse-gallop 68,352 -> 70,353). They get a trial of their own below. The best of them is
+  // refined as the screened counts are: at every other step, then halfway to its neighbours
+  // at its best step.
+  auto rescue_cut_counts = [&](const GridComponents& pca, const std::vector<uint32_t>& counts, size_t cut) {
+    if (!options.rescue_cut_counts || forced) return true;
+    for (size_t i = cut; i < counts.size(); ++i) {
+      bool screened = false;
+      for (double coarser : kOtherSteps) {
+        if (coarser <= kFirstStep) continue;
+        if (!try_candidate(pca, counts[i], coarser, &screened, &rescued)) return false;
+        if (screened) break;
+      }
+      if (!screened) break;
+    }
+    const Candidate* top = best_rescued(&pca);
+    if (!top) return true;
+    const uint32_t top_K = top->model.components;
+    const double top_step = top->basis_step;
+    for (double other : kOtherSteps) {
+      bool screened = false;
+      if (other != top_step && !try_candidate(pca, top_K, other, &screened, &rescued)) return false;
+    }
+    const double best_step = best_rescued(&pca)->basis_step;
+    for (uint32_t mid : halfway_counts(counts, top_K)) {
+      bool screened = false;
+      if (!try_candidate(pca, mid, best_step, &screened, &rescued)) return false;
+    }
+    return true;
+  };
   auto screen_anchor = [&](const GridComponents& pca) {
     const uint32_t available = uint32_t(pca.weights.size());
     std::vector<uint32_t> counts;
@@ -313,7 +348,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
       }
     }
     const Candidate* best = best_of(&pca, false);
-    if (forced || !best || best->net_bytes <= 0) return true;
+    if (forced || !best || best->net_bytes <= 0) return rescue_cut_counts(pca, counts, cut);
     // When the best count is the largest screened, the first step cut off the next ones
     // (their section alone outweighed the payload) before the net saving was seen to fall:
     // at the refined, coarser step they may pay, so they are screened at it, upwards while
@@ -349,39 +384,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
       bool screened = false;
       if (mid <= available && !try_candidate(pca, mid, step, &screened)) return false;
     }
-    // The counts the first step cut off, each at the first coarser step where its section
-    // fits, set apart (`rescued`) so that nothing above changes: the first step's cut can
-    // hide the best count of an anchor (the sheet at 1e-3, grid 8x: the frame-0 anchor's
-    // K = 56 codes 46,569 bytes, while its trials of the counts screened above, K = 1 and 2,
-    // coded 63,448 and 64,280), but ranking the rescued counts with the others moved the
-    // trials elsewhere (blob 11,638 -> 11,749 bytes, rope-small 19,791 -> 19,852,
-    // horse-gallop 68,352 -> 70,353). They get a trial of their own below. The best of them
-    // is refined as the screened counts are: at every other step, then halfway to its
-    // neighbours at its best step.
-    if (!options.rescue_cut_counts || forced) return true;
-    for (size_t i = cut; i < counts.size(); ++i) {
-      bool screened = false;
-      for (double coarser : kOtherSteps) {
-        if (coarser <= kFirstStep) continue;
-        if (!try_candidate(pca, counts[i], coarser, &screened, &rescued)) return false;
-        if (screened) break;
-      }
-      if (!screened) break;
-    }
-    const Candidate* top = best_rescued(&pca);
-    if (!top) return true;
-    const uint32_t top_K = top->model.components;
-    const double top_step = top->basis_step;
-    for (double other : kOtherSteps) {
-      bool screened = false;
-      if (other != top_step && !try_candidate(pca, top_K, other, &screened, &rescued)) return false;
-    }
-    const double best_step = best_rescued(&pca)->basis_step;
-    for (uint32_t mid : halfway_counts(counts, top_K)) {
-      bool screened = false;
-      if (!try_candidate(pca, mid, best_step, &screened, &rescued)) return false;
-    }
-    return true;
+    return rescue_cut_counts(pca, counts, cut);
   };
   for (const GridComponents& pca : pcas)
     if (!screen_anchor(pca)) return false;
