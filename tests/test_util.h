@@ -4,7 +4,6 @@
 #pragma once
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -68,18 +67,9 @@ inline double decoded_max_error(const std::vector<uint8_t>& bytes, const Animati
   auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &err);
   EXPECT_TRUE(dec) << err;
   if (!dec) return HUGE_VAL;
-  const double L = bbox_diagonal(anim.frames[0]);
-  double worst = 0;
-  std::vector<float> xyz(size_t(anim.vertex_count) * 3);
-  for (uint32_t f = 0; f < anim.frames.size(); ++f) {
-    dec->evaluate_frame(f, xyz.data());
-    for (size_t v = 0; v < anim.vertex_count; ++v) {
-      double d2 = 0;
-      for (int a = 0; a < 3; ++a) d2 += std::pow(double(xyz[3 * v + a]) - anim.frames[f][3 * v + a], 2);
-      worst = std::max(worst, std::sqrt(d2) / L);
-    }
-  }
-  return worst;
+  std::vector<std::vector<float>> decoded(anim.frames.size(), std::vector<float>(size_t(anim.vertex_count) * 3));
+  for (uint32_t f = 0; f < decoded.size(); ++f) dec->evaluate_frame(f, decoded[f].data());
+  return measure_error(anim, decoded).max_error;
 }
 
 // A unit square as two triangles in a text format ("obj", "off" or "ply"), its second

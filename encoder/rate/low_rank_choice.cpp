@@ -292,8 +292,9 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     const uint32_t top_K = top->model.components;
     const double top_step = top->basis_step;
     for (double other : kOtherSteps) {
+      if (other > kFirstStep && other <= top_step) continue;  // tried above, or top_step itself
       bool screened = false;
-      if (other != top_step && !try_candidate(pca, top_K, other, &screened, &rescued)) return false;
+      if (!try_candidate(pca, top_K, other, &screened, &rescued)) return false;
     }
     const double best_step = best_rescued(&pca)->basis_step;
     for (uint32_t mid : halfway_counts(counts, top_K)) {
@@ -412,29 +413,40 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   // another count: the estimate misjudged that count, maybe not the next (horse-gallop at
   // 1e-3, grid 2x: K = 3 estimated 8,730 bytes net and saved 90; K = 1 then saved 2,643).
   std::vector<const GridComponents*> disappointed;
-  for (const Candidate& c : candidates) {
-    const auto same_anchor = [&](const std::pair<const GridComponents*, uint32_t>& t) { return t.first == c.pca; };
-    const uint32_t allowed = options.max_trials + uint32_t(std::count(disappointed.begin(), disappointed.end(), c.pca));
-    if (uint32_t(std::count_if(tried.begin(), tried.end(), same_anchor)) >= allowed) continue;
-    if (!forced && c.saved_bytes <= (cheap ? kCheapTrialSavingFactor : kTrialSavingFactor) * c.section_bytes) continue;
-    // A second trial of the same count at another step mostly repeats the first's error.
-    if (std::find(tried.begin(), tried.end(), std::make_pair(c.pca, c.model.components)) != tried.end()) continue;
-    tried.emplace_back(c.pca, c.model.components);
+  auto worth_a_trial = [&](const Candidate& c) {
+    return forced || c.saved_bytes > (cheap ? kCheapTrialSavingFactor : kTrialSavingFactor) * c.section_bytes;
+  };
+  // The full trial of c (one of `rescued` when from_rescue): *bytes its whole file, kept
+  // when the smallest so far.
+  auto run_trial = [&](const Candidate& c, bool from_rescue, uint64_t* bytes) {
     Model trial = *model;
     trial.low_rank = c.model;
     if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, options.weights, error))
       return false;
     ++rep.trials;
-    const uint64_t bytes = write_container(trial, write_options).size();
-    const bool first_of_anchor = std::count_if(tried.begin(), tried.end(), same_anchor) == 1;
-    if (!forced && first_of_anchor && double(rep.bytes_without) - double(bytes) < 0.5 * c.net_bytes)
-      disappointed.push_back(c.pca);
-    if (bytes < best) {
-      best = bytes;
+    *bytes = write_container(trial, write_options).size();
+    if (*bytes < best) {
+      best = *bytes;
       best_model = std::move(trial);
       rep.components = c.model.components;
       rep.basis_step = c.basis_step;
+      rep.rescued = from_rescue;
     }
+    return true;
+  };
+  for (const Candidate& c : candidates) {
+    const auto same_anchor = [&](const std::pair<const GridComponents*, uint32_t>& t) { return t.first == c.pca; };
+    const uint32_t allowed = options.max_trials + uint32_t(std::count(disappointed.begin(), disappointed.end(), c.pca));
+    if (uint32_t(std::count_if(tried.begin(), tried.end(), same_anchor)) >= allowed) continue;
+    if (!worth_a_trial(c)) continue;
+    // A second trial of the same count at another step mostly repeats the first's error.
+    if (std::find(tried.begin(), tried.end(), std::make_pair(c.pca, c.model.components)) != tried.end()) continue;
+    tried.emplace_back(c.pca, c.model.components);
+    uint64_t bytes = 0;
+    if (!run_trial(c, false, &bytes)) return false;
+    const bool first_of_anchor = std::count_if(tried.begin(), tried.end(), same_anchor) == 1;
+    if (!forced && first_of_anchor && double(rep.bytes_without) - double(bytes) < 0.5 * c.net_bytes)
+      disappointed.push_back(c.pca);
   }
   // Per anchor, the best rescued count gets one more trial when its estimate beats every
   // candidate the anchor had, so no file grows. At 1e-3: sheet 47,558 -> 46,569 bytes,
@@ -443,21 +455,9 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   for (const GridComponents& pca : pcas) {
     const Candidate* c = best_rescued(&pca);
     const Candidate* screened = best_of(&pca, false);
-    if (!c || (screened && c->net_bytes <= screened->net_bytes)) continue;
-    if (c->saved_bytes <= (cheap ? kCheapTrialSavingFactor : kTrialSavingFactor) * c->section_bytes) continue;
-    Model trial = *model;
-    trial.low_rank = c->model;
-    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, options.weights, error))
-      return false;
-    ++rep.trials;
-    const uint64_t bytes = write_container(trial, write_options).size();
-    if (bytes < best) {
-      best = bytes;
-      best_model = std::move(trial);
-      rep.components = c->model.components;
-      rep.basis_step = c->basis_step;
-      rep.rescued = true;
-    }
+    if (!c || (screened && c->net_bytes <= screened->net_bytes) || !worth_a_trial(*c)) continue;
+    uint64_t bytes = 0;
+    if (!run_trial(*c, true, &bytes)) return false;
   }
   if (rep.components > 0) {
     *model = std::move(best_model);
