@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <iterator>
 #include <cmath>
+#include <iterator>
+#include <memory>
 
 #include "codec/container.h"
 #include "codec/error.h"
@@ -73,12 +74,15 @@ Curves file_curves(const Animation& anim, const EncodeOptions& opt, std::string*
 }
 
 // What both encodes share: metadata, faces, the plain file's curves, the residual grid and
-// its rounded values, and the spatial weight tables its walks solved.
+// its rounded values, the spatial weight tables its walks solved, and the plain file's
+// traversal (it depends on the faces or curves alone, and a 5-frame crane encode built it
+// 44 times).
 struct GridStart {
   Model model;
   std::vector<int32_t> rounded;
   double snap = 0;
   SpatialWeightsSource* weights = nullptr;
+  std::shared_ptr<const Traversal> traversal;
 };
 
 // The encode without a PDE model: the residual layer alone, with a low-rank model where it
@@ -93,6 +97,7 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   po.threads = opt.threads;
   ResidualOptions ro;
   ro.weights_source = start.weights;
+  ro.traversal = start.traversal.get();
   const PredictorPlan plan = choose_plan_and_grid(*m, anim.frames, start.snap, &q, ro, po);
   m->residual.payload = encode_residuals(*m, q, &plan, ro);
   if (m->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
@@ -104,6 +109,7 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   lro.first_frame_anchor = opt.low_rank_first_frame;
   lro.threads = opt.threads;
   lro.weights = start.weights;
+  lro.traversal = start.traversal.get();
   LowRankChoiceReport rep;
   if (!choose_low_rank(m, anim.frames, start.rounded, start.snap, wo, lro, &rep, error)) return false;
   if (bytes) *bytes = rep.bytes;
@@ -125,6 +131,13 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
   EncodeOptions plain_opt = opt;
   plain_opt.model = ModelChoice::None;
   m.curves = file_curves(anim, plain_opt, curve_fallback);
+  {
+    ResidualOptions ro;
+    ro.weights_source = out->weights;
+    Traversal trav;
+    traversal_for(m, ro, &trav);
+    out->traversal = std::make_shared<const Traversal>(std::move(trav));
+  }
   out->snap = snap_distance(anim, opt.tolerance * L);
   // The grid is chosen by whole plain encodes, which see the faces, curves and low-rank
   // model the file keeps: cheaper proxies (the residual layer alone, fewer coding orders)
@@ -143,6 +156,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                     s.model.residual = grid;
                     s.snap = out->snap;
                     s.weights = out->weights;
+                    s.traversal = out->traversal;
                     if (!quantize_to_grid(part, grid, &s.rounded, nullptr)) return SIZE_MAX;
                     EncodeOptions o = plain_opt;
                     o.threads = threads;

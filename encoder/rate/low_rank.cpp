@@ -85,9 +85,10 @@ void snap_basis_vector(const Traversal& t, const double* x_all, const int32_t* m
 // Basis values are snapped (snap_basis_vector) under each mode tried; `values` receives the
 // ones coded. `exact`: the K basis vectors' amplitudes in basis steps. memo (may be null):
 // the modes and values chosen for this mean and step by earlier calls, extended here.
+// traversal (may be null): build_traversal of the model's faces or curves.
 std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t>* values_io,
                                          const std::vector<double>& exact, uint32_t frames, int threads,
-                                         BasisMemo::Entry* memo = nullptr) {
+                                         BasisMemo::Entry* memo, const Traversal* traversal) {
   std::vector<int32_t>& values = *values_io;
   const size_t n = size_t(model.meta.vertex_count) * 3;
   Model pseudo;
@@ -103,7 +104,8 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t
     }
     return uniform_plan(order, choices);
   };
-  const Traversal trav = build_traversal(pseudo);
+  Traversal owned;
+  const Traversal& trav = traversal ? *traversal : (owned = build_traversal(pseudo));
   ResidualOptions options;
   options.traversal = &trav;
   // The mode of the last of `trial`'s frames that codes `vals` (those frames) smallest; with
@@ -201,12 +203,13 @@ std::vector<uint8_t> coefficient_shifts(const std::vector<int32_t>& values, uint
 
 }  // namespace
 
-size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads) {
-  return code_mean_and_basis(model, &values, {}, 1, threads).size();
+size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads, const Traversal* traversal) {
+  return code_mean_and_basis(model, &values, {}, 1, threads, nullptr, traversal).size();
 }
 
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
-                       Model* model, const std::vector<int32_t>* q, BasisMemo* memo) {
+                       Model* model, const std::vector<int32_t>* q, BasisMemo* memo,
+                       const Traversal* traversal) {
   const uint32_t F = model->meta.frame_count;
   const size_t n = pca.mean.size();
   if (K == 0 || K > pca.weights.size() || K > kMaxLowRankComponents || !(basis_step > 0)) return false;
@@ -247,7 +250,7 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
       entry->mean_shift = mean_shift;
     }
   }
-  lr.basis_payload = code_mean_and_basis(*model, &values, exact, K + 1, threads, entry);
+  lr.basis_payload = code_mean_and_basis(*model, &values, exact, K + 1, threads, entry, traversal);
   if (lr.basis_payload.empty()) return false;
   std::vector<double> weights(size_t(F) * K);
   for (uint32_t f = 0; f < F; ++f)

@@ -33,7 +33,9 @@ GridComponents grid_components(const std::vector<int32_t>& q, uint32_t F, size_t
 
 // Bytes of `values` (V * 3 grid values) coded as an LRNK basis payload's pseudo-frame 0
 // alone, as quantize_low_rank codes it: with the spatial mode that codes it smallest.
-size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads);
+// traversal (may be null): build_traversal(model), when the caller has it already.
+size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads,
+                    const Traversal* traversal = nullptr);
 
 // Basis vectors quantize_low_rank has chosen for one GridComponents and model, by basis step
 // and mean shift: a vector's coded values and spatial mode depend on those, the mean and its
@@ -57,8 +59,10 @@ struct BasisMemo {
 // codes the mean and basis with the residual coder (model's faces or curves give the
 // neighbours) on up to `threads` threads (0: all cores; the bytes never depend on it).
 // memo (may be null; the same pca and model on every call) makes the result no different,
-// only faster. False when a value would leave the format's ranges.
+// only faster, and so does traversal (may be null: build_traversal(*model), when the caller
+// has it already). False when a value would leave the format's ranges.
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
-                       Model* model, const std::vector<int32_t>* q = nullptr, BasisMemo* memo = nullptr);
+                       Model* model, const std::vector<int32_t>* q = nullptr, BasisMemo* memo = nullptr,
+                       const Traversal* traversal = nullptr);
 
 }  // namespace dcurve

@@ -132,13 +132,12 @@ FrameSample sample_frames(const Model& model, const std::vector<std::vector<floa
 // 113,737, the other eight inputs the same files.
 bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>& frames,
                             const std::vector<int32_t>& rounded, double snap_distance,
-                            const ResidualPlanOptions& plan_options, SpatialWeightsSource* weights,
+                            const ResidualPlanOptions& plan_options, const ResidualOptions& shared,
                             std::string* error) {
   std::vector<int32_t> prediction;
   if (!model_grid_prediction(*trial, UINT64_MAX, &prediction, error)) return false;
-  ResidualOptions ro;
+  ResidualOptions ro = shared;
   ro.model_prediction = &prediction;
-  ro.weights_source = weights;
   const size_t orders = plan_options.gop_sizes.size();
   std::vector<std::vector<uint8_t>> payloads(orders);
   // The orders run side by side and share the threads.
@@ -179,11 +178,19 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   }
   if (!forced && (F < 3 || double(F) * F * double(n) > kMaxGramWork)) return true;
 
+  // Every walk below shares one traversal (it depends on the faces or curves alone) and
+  // the encode's weight tables.
+  ResidualOptions shared;
+  shared.weights_source = options.weights;
+  shared.traversal = options.traversal;
+  Traversal owned;
+  shared.traversal = &traversal_for(*model, shared, &owned);
+
   // What the residual layer pays today, frame by frame.
   std::vector<int32_t> q_without;
   PredictorPlan plan_without;
-  if (!decode_residuals(*model, &q_without, error, {}, &plan_without)) return false;
-  const std::vector<double> bits_without = frame_bits(*model, q_without, plan_without, {});
+  if (!decode_residuals(*model, &q_without, error, shared, &plan_without)) return false;
+  const std::vector<double> bits_without = frame_bits(*model, q_without, plan_without, shared);
 
   // Two anchors, each screened over every count: the frame average, the classic centre, and
   // the first frame, often the cleanest shape of an animation (a rest pose, modelled or
@@ -202,7 +209,8 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     std::vector<int32_t> average(n);
     for (size_t i = 0; i < n; ++i) average[i] = int32_t(std::lround(pcas[0].mean[i]));
     const std::vector<int32_t> first(rounded.begin(), rounded.begin() + std::ptrdiff_t(n));
-    if (anchor_bytes(*model, first, options.threads) < anchor_bytes(*model, average, options.threads))
+    if (anchor_bytes(*model, first, options.threads, shared.traversal) <
+        anchor_bytes(*model, average, options.threads, shared.traversal))
       pcas.push_back(grid_components(rounded, F, n, max_components, 0));
   }
   // Screening: the Model predictor alone, time order, on a sample of the frames, against
@@ -227,7 +235,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     *screened = false;
     Model trial = *model;
     if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), options.threads, &trial, &rounded,
-                           &memos[size_t(&pca - pcas.data())]))
+                           &memos[size_t(&pca - pcas.data())], shared.traversal))
       return true;
     const double section = double(low_rank_bytes(trial).size());
     if (!forced && section >= double(model->residual.payload.size())) return true;
@@ -236,9 +244,8 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     for (uint32_t f : sample.frames)
       sampled.insert(sampled.end(), prediction.begin() + std::ptrdiff_t(f * n),
                      prediction.begin() + std::ptrdiff_t((f + 1) * n));
-    ResidualOptions ro;
+    ResidualOptions ro = shared;
     ro.model_prediction = &sampled;
-    ro.weights_source = options.weights;
     const PredictorPlan plan = choose_plan_and_grid(sample.model, sample.input, snap_distance, &q, ro, screen);
     const std::vector<double> bits = frame_bits(sample.model, q, plan, ro);
     double saved = 0;
@@ -421,7 +428,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   auto run_trial = [&](const Candidate& c, bool from_rescue, uint64_t* bytes) {
     Model trial = *model;
     trial.low_rank = c.model;
-    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, options.weights, error))
+    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, shared, error))
       return false;
     ++rep.trials;
     *bytes = write_container(trial, write_options).size();

@@ -31,6 +31,9 @@ struct LowRankChoiceOptions {
   int threads = 0;  // 0: all cores; the result never depends on it
   // The encode's shared spatial weight tables (may be null; the result never depends on it).
   SpatialWeightsSource* weights = nullptr;
+  // The model's traversal as traversal_for builds it with `weights` (may be null: built
+  // here once; the result never depends on it).
+  const Traversal* traversal = nullptr;
 };
 
 struct LowRankChoiceReport {
