@@ -468,9 +468,8 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
     for (Trial& t : trials)
       if (t.bytes < best->bytes) *best = std::move(t);
   };
-  Trial best;
-  std::vector<Trial> orders(po.gop_sizes.size());
-  parallel_for(orders.size(), po.threads, [&](size_t i) {
+  std::vector<Trial> orders(po.gop_sizes.size()), layouts(po.cluster_layouts.size());
+  auto run_order = [&](size_t i) {
     Trial& t = orders[i];
     t.q = *q;
     plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, po.gop_sizes[i]), options, po,
@@ -478,20 +477,33 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
     // The order is judged by the coded size: the estimate that ranks predictors within a
     // frame ignores the contexts, which favour some orders.
     t.bytes = encode_residuals(model, t.q, &t.plan, options).size();
-  });
-  keep_smallest(orders, &best);
+  };
   // Per-cluster predictors on the winning order, kept when they code smaller.
-  std::vector<Trial> layouts(po.cluster_layouts.size());
-  parallel_for(layouts.size(), po.threads, [&](size_t i) {
+  auto run_layout = [&](size_t i, const std::vector<uint32_t>& order) {
     Trial& t = layouts[i];
     t.q = *q;
     const ResidualPlanOptions::ClusterLayout& layout = po.cluster_layouts[i];
     ResidualPlanOptions layout_po = po;
     layout_po.extra_references = layout.extra_references;
-    t.plan = choose_cluster_plan(model, frames, radius, best.plan.order, layout.cluster_size, layout.motion_block,
+    t.plan = choose_cluster_plan(model, frames, radius, order, layout.cluster_size, layout.motion_block,
                                  po.max_candidates, &t.q, options, layout_po);
     t.bytes = encode_residuals(model, t.q, &t.plan, options).size();
-  });
+  };
+  Trial best;
+  if (orders.size() == 1) {
+    // One order wins before it is tried: the layouts need not wait for its plan, and all
+    // run side by side (the low-rank screening plans this way, once per count and step).
+    const std::vector<uint32_t> order = coding_order(model.meta.frame_count, po.gop_sizes[0]);
+    parallel_for(layouts.size() + 1, po.threads, [&](size_t i) {
+      if (i < layouts.size()) run_layout(i, order);
+      else run_order(0);
+    });
+    keep_smallest(orders, &best);
+  } else {
+    parallel_for(orders.size(), po.threads, run_order);
+    keep_smallest(orders, &best);
+    parallel_for(layouts.size(), po.threads, [&](size_t i) { run_layout(i, best.plan.order); });
+  }
   keep_smallest(layouts, &best);
   q->swap(best.q);
   return best.plan;
