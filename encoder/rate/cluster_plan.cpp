@@ -139,7 +139,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
   const double motion_share = std::min(1.0, 4.0 / M);
   plan.frames.resize(F);
   std::vector<uint8_t> decoded(F, 0), magnitude(stride);
-  std::vector<int64_t> base;
+  std::vector<int64_t> base, plane;
   std::vector<int32_t> orig(stride), best_values;
   std::vector<std::pair<int, int64_t>> trial_res, best_res;  // (context, residual) of the cluster
   CostTable table;
@@ -162,9 +162,16 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
         pool.push_back({PredictorKind::Motion, c.r0, 0, c.spatial, c.g});
     }
     if (pool.empty()) pool.push_back({PredictorKind::None, 0, 0, SpatialMode::Off});
+    // Candidate c's prediction of vertex u on axis a at base[(c * V + u) * 3 + a]: a vertex's
+    // three axes share a cache line, which the evaluations below read together.
     base.resize(pool.size() * stride);
+    plane.resize(V);
     for (size_t c = 0; c < pool.size(); ++c)
-      for (int a = 0; a < 3; ++a) base_prediction(pool[c], f, a, V, q->data(), options, &base[(c * 3 + size_t(a)) * V]);
+      for (int a = 0; a < 3; ++a) {
+        base_prediction(pool[c], f, a, V, q->data(), options, plane.data());
+        int64_t* out = &base[c * stride + size_t(a)];
+        for (uint32_t u = 0; u < V; ++u) out[size_t(u) * 3] = plane[u];
+      }
     // Motion maps (and the block centres they apply around) per motion block and
     // reference frame, computed once.
     struct BlockMap {
@@ -236,7 +243,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
           auto base_of = [&](uint32_t u, int a) -> int64_t {
             if (choice[a].kind == PredictorKind::Motion)
               return motion_prediction(rows[a], a, centre[a], ref[a] + size_t(u) * 3);
-            return base[(size_t(t[size_t(a)]) * 3 + size_t(a)) * V + u];
+            return base[size_t(t[size_t(a)]) * stride + size_t(u) * 3 + size_t(a)];
           };
           std::fill(axis_bits, axis_bits + 3, HUGE_VAL);
           double per_axis[3] = {0, 0, 0};
