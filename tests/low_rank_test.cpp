@@ -217,6 +217,29 @@ TEST(LowRank, BasisMemoGivesTheSameModelAsCodingAfresh) {
   EXPECT_EQ(memo.entries[0].modes.size(), 6u);
 }
 
+// The screening predicts from the values quantize_low_rank returns instead of decoding its
+// payload: they must be what a decoder decodes, with and without the memo.
+TEST(LowRank, ReturnedValuesAreWhatThePayloadDecodesTo) {
+  const SheetOnGrid sheet = sheet_on_grid();
+  const std::vector<int32_t>& q = sheet.q;
+  const GridComponents pca = grid_components(q, sheet.model.meta.frame_count, sheet.n, 4);
+  ASSERT_EQ(pca.weights.size(), 4u);
+  BasisMemo memo;
+  const std::pair<uint32_t, double> calls[] = {{2, 0.5}, {4, 0.5}, {3, 2.0}, {1, 0.5}};
+  for (bool with_memo : {false, true})
+    for (const auto& [K, step] : calls) {
+      Model m = sheet.model;
+      std::vector<int32_t> returned, decoded;
+      ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &m, &q, with_memo ? &memo : nullptr, nullptr, &returned));
+      Model pseudo = m;
+      pseudo.meta.frame_count = K + 1;
+      pseudo.residual.payload = m.low_rank.basis_payload;
+      std::string err;
+      ASSERT_TRUE(decode_residuals(pseudo, &decoded, &err)) << err;
+      EXPECT_EQ(returned, decoded) << "K " << K << " step " << step << (with_memo ? " with memo" : "");
+    }
+}
+
 TEST(LowRank, RoundShiftIsHalfUpDivision) {
   std::mt19937_64 rng(7);
   for (int i = 0; i < 20000; ++i) {

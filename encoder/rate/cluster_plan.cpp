@@ -140,6 +140,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
   plan.frames.resize(F);
   std::vector<uint8_t> decoded(F, 0), magnitude(stride);
   std::vector<int64_t> base, plane;
+  std::vector<AxisRun> scratch_runs;
   std::vector<int32_t> orig(stride), best_values;
   std::vector<std::pair<int, int64_t>> trial_res, best_res;  // (context, residual) of the cluster
   CostTable table;
@@ -147,7 +148,8 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
   for (uint32_t f : order) {
     int32_t* qf = q->data() + size_t(f) * stride;
     const float* input = frames[f].data();
-    const std::vector<AxisRun> runs = po.snap ? axis_runs(model.residual, input, V, radius) : std::vector<AxisRun>();
+    const std::vector<AxisRun>& runs =
+        po.snap ? frame_axis_runs(po, model.residual, input, V, radius, f, &scratch_runs) : scratch_runs;
     std::copy(qf, qf + stride, orig.begin());
     // The pool: the frame-wide candidates, and a motion-compensated twin of every Reference.
     ResidualPlanOptions with_references = po;

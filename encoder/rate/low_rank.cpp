@@ -209,7 +209,7 @@ size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads
 
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
                        Model* model, const std::vector<int32_t>* q, BasisMemo* memo,
-                       const Traversal* traversal) {
+                       const Traversal* traversal, std::vector<int32_t>* mean_and_basis) {
   const uint32_t F = model->meta.frame_count;
   const size_t n = pca.mean.size();
   if (K == 0 || K > pca.weights.size() || K > kMaxLowRankComponents || !(basis_step > 0)) return false;
@@ -263,6 +263,7 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
     if (!round_to(std::nearbyint(weights[j] / unit) * unit, kMaxLowRankCoeff, &lr.coeffs[j])) return false;
   }
   model->low_rank = std::move(lr);
+  if (mean_and_basis) *mean_and_basis = std::move(values);
   return true;
 }
 

@@ -60,9 +60,11 @@ struct BasisMemo {
 // neighbours) on up to `threads` threads (0: all cores; the bytes never depend on it).
 // memo (may be null; the same pca and model on every call) makes the result no different,
 // only faster, and so does traversal (may be null: build_traversal(*model), when the caller
-// has it already). False when a value would leave the format's ranges.
+// has it already). mean_and_basis (may be null) receives the values coded, mean then the K
+// basis vectors, n each: what a decoder decodes from the basis payload, for low_rank_frame.
+// False when a value would leave the format's ranges.
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
                        Model* model, const std::vector<int32_t>* q = nullptr, BasisMemo* memo = nullptr,
-                       const Traversal* traversal = nullptr);
+                       const Traversal* traversal = nullptr, std::vector<int32_t>* mean_and_basis = nullptr);
 
 }  // namespace dcurve

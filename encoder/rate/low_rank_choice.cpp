@@ -10,6 +10,7 @@
 #include "decoder/model_prediction.h"
 #include "encoder/parallel.h"
 #include "encoder/rate/low_rank.h"
+#include "encoder/rate/plan_steps.h"
 #include "encoder/rate/residual_plan.h"
 
 namespace dcurve {
@@ -235,6 +236,10 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   // An odd stride: hierarchical coding orders make every power-of-two-th frame dearer.
   const FrameSample sample = sample_frames(*model, frames, rounded, ((F + kScreenFrames - 1) / kScreenFrames) | 1);
   const double sample_scale = double(F) / double(sample.frames.size());
+  // Every screening plan snaps the same frames on the same grid.
+  const std::vector<std::vector<AxisRun>> sample_runs =
+      plan_axis_runs(sample.model, sample.input, snap_distance, options.threads);
+  screen.axis_runs = &sample_runs;
   std::vector<Candidate> candidates, rescued;
   std::vector<BasisMemo> memos(pcas.size());  // per anchor
   // Screens count K at `step` into `into` (the candidates unless given).
@@ -243,16 +248,17 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     if (!into) into = &candidates;
     *screened = false;
     Model trial = *model;
+    std::vector<int32_t> mean_and_basis;
     if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), options.threads, &trial, &rounded,
-                           &memos[size_t(&pca - pcas.data())], shared.traversal))
+                           &memos[size_t(&pca - pcas.data())], shared.traversal, &mean_and_basis))
       return true;
     const double section = double(low_rank_bytes(trial).size());
     if (!forced && section >= double(model->residual.payload.size())) return true;
-    std::vector<int32_t> prediction, sampled, q = sample.rounded;
-    if (!model_grid_prediction(trial, UINT64_MAX, &prediction, error)) return false;
-    for (uint32_t f : sample.frames)
-      sampled.insert(sampled.end(), prediction.begin() + std::ptrdiff_t(f * n),
-                     prediction.begin() + std::ptrdiff_t((f + 1) * n));
+    // The sampled frames' predictions, from the values the basis payload codes (the full
+    // trials decode the payload, as a decoder does).
+    std::vector<int32_t> sampled(sample.frames.size() * n), q = sample.rounded;
+    for (size_t j = 0; j < sample.frames.size(); ++j)
+      low_rank_frame(trial.low_rank, sample.frames[j], mean_and_basis.data(), n, sampled.data() + j * n);
     ResidualOptions ro = shared;
     ro.model_prediction = &sampled;
     const PredictorPlan plan = choose_plan_and_grid(sample.model, sample.input, snap_distance, &q, ro, screen);

@@ -56,6 +56,11 @@ struct AxisRun {
 };
 // The runs of every coordinate of one frame (xyz: V * 3 input coordinates), in that order.
 std::vector<AxisRun> axis_runs(const ResidualLayer& layer, const float* xyz, size_t V, double radius);
+// Frame f's runs (xyz: its V * 3 input coordinates): po.axis_runs' when given, else
+// computed into *scratch.
+const std::vector<AxisRun>& frame_axis_runs(const ResidualPlanOptions& po, const ResidualLayer& layer,
+                                            const float* xyz, size_t V, double radius, uint32_t f,
+                                            std::vector<AxisRun>* scratch);
 // snap_vertex with x's three runs given (runs[a] for axis a, as axis_runs computes them for
 // the same layer and radius); the overload above computes them itself.
 void snap_vertex(const ResidualLayer& layer, const float* x, const AxisRun* runs, double radius,

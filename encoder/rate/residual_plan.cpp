@@ -79,6 +79,14 @@ std::vector<AxisRun> axis_runs(const ResidualLayer& layer, const float* xyz, siz
   return runs;
 }
 
+const std::vector<AxisRun>& frame_axis_runs(const ResidualPlanOptions& po, const ResidualLayer& layer,
+                                            const float* xyz, size_t V, double radius, uint32_t f,
+                                            std::vector<AxisRun>* scratch) {
+  if (po.axis_runs) return (*po.axis_runs)[f];
+  *scratch = axis_runs(layer, xyz, V, radius);
+  return *scratch;
+}
+
 void snap_vertex(const ResidualLayer& layer, const float* x, double radius, double distance_weight,
                  const int64_t* pred, int32_t* qv) {
   const AxisRun runs[3] = {axis_run(layer, 0, x[0], radius), axis_run(layer, 1, x[1], radius),
@@ -368,6 +376,10 @@ double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::
 
 namespace {
 
+// The snapping radius of a plan for max_distance: a hair inside the bound, so rounding in
+// the error measurement cannot push it over.
+double plan_radius(double max_distance) { return max_distance * (1.0 - 1e-9); }
+
 // Chooses predictors and grid values for one coding order; returns the estimated bits.
 double plan_for_order(const Model& model, const Traversal& trav, const std::vector<std::vector<float>>& frames,
                       double radius, const std::vector<uint32_t>& order, const ResidualOptions& options,
@@ -381,14 +393,15 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
   std::vector<int32_t> scratch(stride), best_frame(stride);
   double total = 0;
   SpatialWeightsCache geometry(options.weights_source);
-  std::vector<AxisRun> runs;
+  std::vector<AxisRun> scratch_runs;
   RunningBits running(stride);
   PredictorChoice last_winner{PredictorKind::None, 0, 0, SpatialMode::Off};
   for (uint32_t f : order) {
     int32_t* qf = q->data() + size_t(f) * stride;
     double best = HUGE_VAL;
     size_t best_index = SIZE_MAX;
-    if (po.snap) runs = axis_runs(model.residual, frames[f].data(), V, radius);
+    const std::vector<AxisRun>* runs =
+        po.snap ? &frame_axis_runs(po, model.residual, frames[f].data(), V, radius, f, &scratch_runs) : nullptr;
     const std::vector<PredictorChoice> candidates = candidates_for(*q, V, f, decoded, options, po);
     // The previous frame's kind and spatial mode usually win again: tried first, they give
     // the bound that drops the others early. Ties still go to the earliest in the list.
@@ -416,7 +429,7 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
                           [&](uint32_t u, int a) { return base[size_t(a) * V + u]; }, pred, weights);
         int32_t* qv = &scratch[size_t(v) * 3];
         if (po.snap)
-          snap_vertex(model.residual, &frames[f][size_t(v) * 3], &runs[size_t(v) * 3], radius, po.distance_weight, pred,
+          snap_vertex(model.residual, &frames[f][size_t(v) * 3], &(*runs)[size_t(v) * 3], radius, po.distance_weight, pred,
                       qv);
         uint8_t axis_max = 0;
         int classes[3];
@@ -449,6 +462,15 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
 
 }  // namespace
 
+std::vector<std::vector<AxisRun>> plan_axis_runs(const Model& model, const std::vector<std::vector<float>>& frames,
+                                                 double max_distance, int threads) {
+  std::vector<std::vector<AxisRun>> runs(frames.size());
+  parallel_for(frames.size(), threads, [&](size_t f) {
+    runs[f] = axis_runs(model.residual, frames[f].data(), model.meta.vertex_count, plan_radius(max_distance));
+  });
+  return runs;
+}
+
 PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
                                    double max_distance, std::vector<int32_t>* q, const ResidualOptions& caller_options,
                                    const ResidualPlanOptions& po) {
@@ -456,8 +478,7 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
   const Traversal& trav = traversal_for(model, caller_options, &owned);
   ResidualOptions options = caller_options;  // every trial below reuses this traversal
   options.traversal = &trav;
-  // A hair inside the bound, so rounding in the error measurement cannot push it over.
-  const double radius = max_distance * (1.0 - 1e-9);
+  const double radius = plan_radius(max_distance);
   // Independent trials run in parallel; the first smallest wins, whatever the thread count.
   struct Trial {
     std::vector<int32_t> q;

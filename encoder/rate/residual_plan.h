@@ -9,6 +9,8 @@
 
 namespace dcurve {
 
+struct AxisRun;
+
 struct ResidualPlanOptions {
   // Decoded frames tried as a reference besides the nearest ones, picked by the smallest
   // difference to the frame being coded (animations repeat their poses). >= 0.
@@ -45,6 +47,10 @@ struct ResidualPlanOptions {
   // Threads for the independent trials (coding orders, cluster layouts); 0 = all cores.
   // The result never depends on it.
   int threads = 0;
+  // plan_axis_runs of the plan's model, frames and max_distance, for a caller that plans
+  // the same frames on the same grid many times; null: each plan computes them. The result
+  // never depends on it.
+  const std::vector<std::vector<AxisRun>>* axis_runs = nullptr;
 };
 
 // Estimated cost, bits, of coding `residuals` with an adaptive integer coder: their
@@ -67,5 +73,11 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
                                    double max_distance, std::vector<int32_t>* q,
                                    const ResidualOptions& options = {},
                                    const ResidualPlanOptions& plan_options = {});
+
+// Per frame, the grid values of each input coordinate that choose_plan_and_grid may snap it
+// to (plan_steps.h), as it computes them for these arguments; on up to `threads` threads
+// (0: all cores). Memory: 72 bytes per vertex and frame.
+std::vector<std::vector<AxisRun>> plan_axis_runs(const Model& model, const std::vector<std::vector<float>>& frames,
+                                                 double max_distance, int threads);
 
 }  // namespace dcurve
