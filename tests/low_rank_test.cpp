@@ -197,7 +197,9 @@ TEST(LowRank, BasisValuesStayNearTheirAmplitudesAndTheMeanIsRounded) {
 }
 
 // The memo only saves work: counts up and down and steps interleaved, as the screening
-// calls them, give the model a call without it gives, byte for byte.
+// calls them, give the model a call without it gives, byte for byte. The screening predicts
+// from the values quantize_low_rank returns instead of decoding its payload: with and
+// without the memo, they must be what a decoder decodes.
 TEST(LowRank, BasisMemoGivesTheSameModelAsCodingAfresh) {
   const SheetOnGrid sheet = sheet_on_grid();
   const std::vector<int32_t>& q = sheet.q;
@@ -207,37 +209,22 @@ TEST(LowRank, BasisMemoGivesTheSameModelAsCodingAfresh) {
   const std::pair<uint32_t, double> calls[] = {{2, 0.5}, {5, 0.5}, {1, 0.5}, {3, 2.0}, {6, 0.5}, {4, 2.0}, {3, 0.5}};
   for (const auto& [K, step] : calls) {
     Model fresh = sheet.model, memoized = sheet.model;
-    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &fresh, &q));
-    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &memoized, &q, &memo));
+    std::vector<int32_t> fresh_values, memoized_values, decoded;
+    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &fresh, &q, nullptr, nullptr, &fresh_values));
+    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &memoized, &q, &memo, nullptr, &memoized_values));
     EXPECT_EQ(memoized.low_rank.basis_payload, fresh.low_rank.basis_payload) << "K " << K << " step " << step;
     EXPECT_EQ(memoized.low_rank.coeffs, fresh.low_rank.coeffs) << "K " << K << " step " << step;
     EXPECT_EQ(memoized.low_rank.coeff_shifts, fresh.low_rank.coeff_shifts) << "K " << K << " step " << step;
+    Model pseudo = fresh;
+    pseudo.meta.frame_count = K + 1;
+    pseudo.residual.payload = fresh.low_rank.basis_payload;
+    std::string err;
+    ASSERT_TRUE(decode_residuals(pseudo, &decoded, &err)) << err;
+    EXPECT_EQ(fresh_values, decoded) << "K " << K << " step " << step;
+    EXPECT_EQ(memoized_values, decoded) << "K " << K << " step " << step;
   }
   ASSERT_EQ(memo.entries.size(), 2u);  // one per step
   EXPECT_EQ(memo.entries[0].modes.size(), 6u);
-}
-
-// The screening predicts from the values quantize_low_rank returns instead of decoding its
-// payload: they must be what a decoder decodes, with and without the memo.
-TEST(LowRank, ReturnedValuesAreWhatThePayloadDecodesTo) {
-  const SheetOnGrid sheet = sheet_on_grid();
-  const std::vector<int32_t>& q = sheet.q;
-  const GridComponents pca = grid_components(q, sheet.model.meta.frame_count, sheet.n, 4);
-  ASSERT_EQ(pca.weights.size(), 4u);
-  BasisMemo memo;
-  const std::pair<uint32_t, double> calls[] = {{2, 0.5}, {4, 0.5}, {3, 2.0}, {1, 0.5}};
-  for (bool with_memo : {false, true})
-    for (const auto& [K, step] : calls) {
-      Model m = sheet.model;
-      std::vector<int32_t> returned, decoded;
-      ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &m, &q, with_memo ? &memo : nullptr, nullptr, &returned));
-      Model pseudo = m;
-      pseudo.meta.frame_count = K + 1;
-      pseudo.residual.payload = m.low_rank.basis_payload;
-      std::string err;
-      ASSERT_TRUE(decode_residuals(pseudo, &decoded, &err)) << err;
-      EXPECT_EQ(returned, decoded) << "K " << K << " step " << step << (with_memo ? " with memo" : "");
-    }
 }
 
 TEST(LowRank, RoundShiftIsHalfUpDivision) {

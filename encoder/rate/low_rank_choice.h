@@ -26,7 +26,8 @@ struct LowRankChoiceOptions {
   // Also screen components around the first frame, besides around the frame average.
   bool first_frame_anchor = true;
   // Screen the counts whose section outweighs today's residual payload at the first basis
-  // step at coarser steps, and give the best of them a trial of its own.
+  // step at coarser steps (upwards, while each saves at least half its section), and give
+  // the best of them a trial of its own.
   bool rescue_cut_counts = true;
   int threads = 0;  // 0: all cores; the result never depends on it
   // The encode's shared spatial weight tables (may be null; the result never depends on it).
