@@ -300,6 +300,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   // at its best step; while they save enough (kRescueRatio).
   auto rescue_cut_counts = [&](const GridComponents& pca, const std::vector<uint32_t>& counts, size_t cut) {
     if (!options.rescue_cut_counts || forced) return true;
+    auto saves_enough = [](const Candidate& c) { return c.saved_bytes >= kRescueRatio * c.section_bytes; };
     // A count's section grows with K, so a larger count fits no finer step than the last.
     size_t from = 0;
     for (size_t i = cut; i < counts.size(); ++i) {
@@ -309,10 +310,10 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
         if (!try_candidate(pca, counts[i], kOtherSteps[from], &screened, &rescued)) return false;
         if (screened) break;
       }
-      if (!screened || rescued.back().saved_bytes < kRescueRatio * rescued.back().section_bytes) break;
+      if (!screened || !saves_enough(rescued.back())) break;
     }
     const Candidate* top = best_rescued(&pca);
-    if (!top || top->saved_bytes < kRescueRatio * top->section_bytes) return true;
+    if (!top || !saves_enough(*top)) return true;
     const uint32_t top_K = top->model.components;
     const double top_step = top->basis_step;
     for (double other : kOtherSteps) {
