@@ -32,6 +32,7 @@ TEST(Cli, BadUsageExitsTwo) {
   EXPECT_EQ(run_cli("encode").exit_code, 2);                                // missing input
   EXPECT_EQ(run_cli("encode x -o y --tolerance 7").exit_code, 2);          // out of range
   EXPECT_EQ(run_cli("encode x -o y --segment-frames often").exit_code, 2);  // neither auto nor a count
+  EXPECT_EQ(run_cli("encode x -o y --effort 4").exit_code, 2);             // out of range
   EXPECT_EQ(run_cli("decode a.dcrv -o d --frames 3 --t 0.5").exit_code, 2);  // exclusive options
 }
 
@@ -175,6 +176,7 @@ TEST(Cli, EncodeDecodeInfoEndToEnd) {
   CommandResult e = run_cli("encode " + dir / "in" + " -o " + dir / "c.dcrv --tolerance 1e-3 --grid 1.5 --json");
   ASSERT_EQ(e.exit_code, 0) << e.output;
   EXPECT_NE(e.output.find("\"max_error\""), std::string::npos);
+  EXPECT_NE(e.output.find("\"effort\":3"), std::string::npos) << e.output;
   CommandResult i = run_cli("info " + dir / "c.dcrv --json");
   ASSERT_EQ(i.exit_code, 0) << i.output;
   EXPECT_NE(i.output.find("\"vertices\":2500"), std::string::npos) << i.output;

@@ -143,6 +143,38 @@ TEST(Guarantee, ChosenGridEncodesLikeTheSameGridGiven) {
   EXPECT_FALSE(encode_animation(anim, opt, &given, nullptr, &err));
 }
 
+// Lower efforts encode the grids they name and nothing else: effort 1 is the file of a grid
+// 6x finer than the coarsest, effort 2 the smaller of 3x and 8x (the coarser of equals); both
+// keep the guarantee. Out-of-range efforts are refused.
+TEST(Guarantee, LowerEffortsEncodeTheGridsTheyName) {
+  const Animation anim = test::simulate_builtin("cantilever", 12);
+  std::string err;
+  auto encode = [&](int effort, double refinement, EncodeReport* rep) {
+    EncodeOptions opt;
+    opt.effort = effort;
+    opt.grid_refinement = refinement;
+    std::vector<uint8_t> bytes;
+    EXPECT_TRUE(encode_animation(anim, opt, &bytes, rep, &err)) << err;
+    return bytes;
+  };
+  EncodeReport rep1, rep2, unused;
+  const std::vector<uint8_t> one = encode(1, 0, &rep1), two = encode(2, 0, &rep2);
+  const std::vector<uint8_t> at3 = encode(3, 3.0, &unused), at6 = encode(3, 6.0, &unused), at8 = encode(3, 8.0, &unused);
+  EXPECT_EQ(one, at6);
+  EXPECT_DOUBLE_EQ(rep1.grid_refinement, 6.0);
+  EXPECT_EQ(two, at8.size() < at3.size() ? at8 : at3);
+  for (const EncodeReport* rep : {&rep1, &rep2}) EXPECT_LE(rep->error.max_error, 1e-3);
+  ErrorStats e = measure_error(anim, decode_frames(two, uint32_t(anim.frames.size())));
+  EXPECT_LE(e.max_error, 1e-3);
+  for (int bad : {0, 4}) {
+    EncodeOptions opt;
+    opt.effort = bad;
+    std::vector<uint8_t> bytes;
+    EXPECT_FALSE(encode_animation(anim, opt, &bytes, nullptr, &err));
+    EXPECT_NE(err.find("effort"), std::string::npos) << err;
+  }
+}
+
 TEST(Guarantee, NoJumpsBetweenFrames) {
   if (!have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found";
   Animation anim = read_corpus_frames("cloth-sphere", 4, 10);

@@ -6,6 +6,7 @@
 // plan's running entropy bound never shrinks and ends at the whole estimate.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -187,6 +188,24 @@ TEST(Grid, SearchLooksPastANearlyAsGoodNeighbour) {
     const double expected = at_four == 1010u ? 6.0 : 3.0;
     EXPECT_NEAR(c.grid.step, coarse / expected, 1e-12 * coarse) << at_four;
     EXPECT_LE(tried.size(), at_four == 1010u ? 6u : 4u) << at_four;
+  }
+}
+
+// The bracket (effort 2) tries 3x and 8x and nothing else, wherever the cheapest lies, and
+// keeps the smaller (the coarser of equals).
+TEST(Grid, BracketTriesThreeAndEightTimesFinerOnly) {
+  const Animation anim = random_animation(50, 40, 1.0, 3);
+  const double max_distance = 1e-3, coarse = coarsest_step(max_distance);
+  for (double target : {1.0, 3.0, 4.0, 6.0, 8.0}) {
+    std::vector<double> tried;
+    const GridChoice c = choose_grid(anim, max_distance, 2, valley(coarse, target, &tried), GridSearch::Bracket);
+    std::sort(tried.begin(), tried.end());
+    ASSERT_EQ(tried.size(), 2u) << "target " << target;
+    EXPECT_NEAR(tried[0], 3.0, 1e-9);
+    EXPECT_NEAR(tried[1], 8.0, 1e-9);
+    const double expected = std::fabs(std::log2(target / 3.0)) <= std::fabs(std::log2(target / 8.0)) ? 3.0 : 8.0;
+    EXPECT_NEAR(c.grid.step, coarse / expected, 1e-12 * coarse) << "target " << target;
+    EXPECT_TRUE(c.whole);
   }
 }
 

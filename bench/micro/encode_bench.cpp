@@ -4,7 +4,9 @@
 // (DCURVE_CORPUS_EXT or ../shared/corpus-ext). DCURVE_ENCODE_BENCH_INPUTS adds inputs, a
 // colon-separated list of built-in scene names or frame folders: the full-size rope
 // (issue #8's 15k-vertex, 100-frame case) is "rope", or a folder `dcurve simulate --scene
-// rope` wrote, which skips the minutes of simulation.
+// rope` wrote, which skips the minutes of simulation. At 1e-3 each input is also encoded at
+// the lower efforts (EncodeOptions::effort), with their bytes and encode seconds as ratios
+// to the default effort's, measured just before in the same run.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -39,7 +41,13 @@ const Animation* input(const std::string& name) {
   return a.frames.empty() ? nullptr : &a;
 }
 
-void BM_Encode(benchmark::State& state, const std::string& name, double tolerance) {
+// The default effort's encode seconds and bytes per input, for the lower efforts' ratios.
+std::map<std::string, std::pair<double, double>>& default_effort() {
+  static std::map<std::string, std::pair<double, double>> results;
+  return results;
+}
+
+void BM_Encode(benchmark::State& state, const std::string& name, double tolerance, int effort) {
   const Animation* anim = input(name);
   if (!anim) {
     state.SkipWithError(("input not found: " + name).c_str());
@@ -47,6 +55,7 @@ void BM_Encode(benchmark::State& state, const std::string& name, double toleranc
   }
   EncodeOptions opt;
   opt.tolerance = tolerance;
+  opt.effort = effort;
   EncodeReport rep;
   for (auto _ : state) {
     std::vector<uint8_t> bytes;
@@ -63,6 +72,13 @@ void BM_Encode(benchmark::State& state, const std::string& name, double toleranc
   state.counters["max_error"] = rep.error.max_error;
   state.counters["vs_quantized_delta"] = double(rep.bytes) / double(base.methods.at(0).bytes);
   state.counters["vertex_frames_per_s"] = benchmark::Counter(vf, benchmark::Counter::kIsIterationInvariantRate);
+  const std::string key = name + "/" + std::to_string(tolerance);
+  if (effort == EncodeOptions().effort) {
+    default_effort()[key] = {rep.encode_seconds, double(rep.bytes)};
+  } else if (default_effort().count(key)) {
+    state.counters["seconds_vs_default"] = rep.encode_seconds / default_effort()[key].first;
+    state.counters["bytes_vs_default"] = double(rep.bytes) / default_effort()[key].second;
+  }
 }
 
 void register_all() {
@@ -75,13 +91,21 @@ void register_all() {
       start = end + 1;
     }
   }
-  for (const std::string& name : names)
-    for (double tol : {1e-2, 1e-3, 1e-4})
-      benchmark::RegisterBenchmark(("encode/" + std::string(name) + "/tol=" + std::to_string(tol)).c_str(),
-                                   [name, tol](benchmark::State& s) { BM_Encode(s, name, tol); })
+  const int standard = EncodeOptions().effort;
+  for (const std::string& name : names) {
+    std::vector<std::pair<double, int>> runs;  // the default effort first: the others' ratios read it
+    for (double tol : {1e-2, 1e-3, 1e-4}) runs.emplace_back(tol, standard);
+    for (int effort = standard - 1; effort >= 1; --effort) runs.emplace_back(1e-3, effort);
+    for (const auto& [tol, effort] : runs) {
+      std::string label = "encode/" + name + "/tol=" + std::to_string(tol);
+      if (effort != standard) label += "/effort=" + std::to_string(effort);
+      benchmark::RegisterBenchmark(label.c_str(),
+                                   [name, tol = tol, effort = effort](benchmark::State& s) { BM_Encode(s, name, tol, effort); })
           ->Unit(benchmark::kSecond)
           ->Iterations(1)
           ->UseRealTime();
+    }
+  }
 }
 
 }  // namespace

@@ -33,12 +33,22 @@ struct GridChoice {
 // How many times finer than the coarsest safe grid for `max_distance` a grid of `step` is.
 double grid_refinement(double step, double max_distance);
 
+// How widely choose_grid searches. Walk: from two refinements, then around the best while
+// it moves (four trials for most inputs). Bracket: two refinements, one near each end of
+// where the walk settles, side by side, and no more (grid.cpp gives what it costs in bytes).
+enum class GridSearch { Walk, Bracket };
+
+// The refinement an encode uses without any trial (effort 1 of EncodeOptions): of the
+// single grids measured, the one whose worst loss against the walk's file was smallest
+// (grid.cpp).
+constexpr double kUntriedRefinement = 6.0;
+
 // The coarsest grid or a finer one (grid.cpp lists them and says why), whichever codes
-// `anim` (or, when it is large, a run of frames from its middle) smallest by `trial`. The
-// refinements are searched from two, then around the best while it moves: four trials
-// for most inputs.
+// `anim` (or, when it is large, a run of frames from its middle) smallest by `trial`, among
+// the refinements `search` tries.
 // threads: 0 = all cores; the choice never depends on it.
-GridChoice choose_grid(const Animation& anim, double max_distance, int threads, const GridTrial& trial);
+GridChoice choose_grid(const Animation& anim, double max_distance, int threads, const GridTrial& trial,
+                       GridSearch search = GridSearch::Walk);
 
 // Rounds every frame to the grid: q[(f * V + v) * 3 + axis]. Fails when a value would not fit
 // an int32 (a tolerance far too small for the motion's range).
