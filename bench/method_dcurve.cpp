@@ -11,6 +11,7 @@ namespace dcurve::bench {
 bool bench_dcurve(const BenchContext& ctx, MethodResult* r, std::string* error) {
   EncodeOptions opt;
   opt.tolerance = ctx.tolerance;
+  opt.effort = ctx.dcurve_effort;
   std::vector<uint8_t> file;
   EncodeReport rep;
   const auto start = std::chrono::steady_clock::now();
@@ -32,7 +33,8 @@ bool bench_dcurve(const BenchContext& ctx, MethodResult* r, std::string* error) 
                 (rep.low_rank_components ? " low_rank=" + std::to_string(rep.low_rank_components) + " (" +
                                                std::to_string(rep.low_rank_bytes) + " B)"
                                          : std::string(" low_rank=off")) +
-                " own connectivity section";
+                " own connectivity section" +
+                (ctx.dcurve_effort != EncodeOptions().effort ? " effort=" + std::to_string(ctx.dcurve_effort) : "");
   Model model;
   std::string ignored;  // the decoder accepted the file above; a failure here only drops the note
   if (read_container(file.data(), file.size(), &model, &ignored)) {

@@ -39,10 +39,12 @@ const std::vector<std::string>& all_methods() {
 }
 
 InputResult run_bench(const std::string& name, const Animation& anim, double tolerance,
-                      const std::vector<std::string>& methods, const std::function<void(double)>& progress) {
+                      const std::vector<std::string>& methods, const std::function<void(double)>& progress,
+                      int dcurve_effort) {
   std::string err;
   if (!validate_animation(anim, &err)) throw std::invalid_argument(name + ": " + err);
   if (!(tolerance > 0 && tolerance <= 0.5)) throw std::invalid_argument("tolerance must be in (0, 0.5]");
+  if (dcurve_effort < 1 || dcurve_effort > 3) throw std::invalid_argument("dcurve effort must be 1, 2 or 3");
   std::vector<const MethodEntry*> chosen;
   for (const auto& m : kMethods)
     if (methods.empty() || std::find(methods.begin(), methods.end(), m.name) != methods.end()) chosen.push_back(&m);
@@ -56,7 +58,7 @@ InputResult run_bench(const std::string& name, const Animation& anim, double tol
   DracoFrameCodec draco;
   const bool draco_ok = draco.init(anim.vertex_count, anim.faces, &err);
   const std::string draco_error = err;
-  const BenchContext ctx{anim, tolerance, L, draco, draco.connectivity_bytes()};
+  const BenchContext ctx{anim, tolerance, L, draco, draco.connectivity_bytes(), dcurve_effort};
   for (size_t i = 0; i < chosen.size(); ++i) {
     if (progress) progress(double(i) / double(chosen.size()));
     MethodResult r;

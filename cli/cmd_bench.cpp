@@ -72,6 +72,7 @@ Action add_bench(CLI::App& app) {
     std::string csv, plot, protocol;
     bool json = false;
     uint32_t max_frames = 0;
+    int effort = 3;
   };
   auto o = std::make_shared<Opts>();
   app.add_option("inputs", o->inputs, "Frame folders, scene files or built-in scene names (none: built-in corpus)");
@@ -84,6 +85,11 @@ Action add_bench(CLI::App& app) {
       ->check(CLI::IsMember(bench::all_methods()));
   app.add_option("--frames", o->max_frames, "Use only the first N frames of each input (0 = all)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--effort", o->effort,
+                 "dcurve's encode effort (as dcurve encode --effort): 3 walks the residual grids by trial encodes, "
+                 "2 tries two side by side, 1 encodes once; lower is faster")
+      ->check(CLI::Range(1, 3))
+      ->capture_default_str();
   app.add_flag("--json", o->json, "Print one JSON object on stdout instead of the table");
   app.add_option("--csv", o->csv, "Also write the results as CSV to this file");
   app.add_option("--plot", o->plot, "Also write the rate-distortion plot (SVG) to this file");
@@ -113,7 +119,7 @@ Action add_bench(CLI::App& app) {
       for (double tol : o->tolerances) {
         char label[64];
         std::snprintf(label, sizeof label, "%.12s %g", name.c_str(), tol);
-        results.push_back(bench::run_bench(name, anim, tol, o->methods, progress_bar(label)));
+        results.push_back(bench::run_bench(name, anim, tol, o->methods, progress_bar(label), o->effort));
       }
     if (o->json)
       std::printf("%s\n", bench::results_json(results).dump().c_str());

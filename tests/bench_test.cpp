@@ -17,6 +17,7 @@
 #include "bench/plot.h"
 #include "bench/report.h"
 #include "bench/runner.h"
+#include "encoder/encoder.h"
 #include "encoder/metrics.h"
 #include "cli_util.h"
 #include "test_util.h"
@@ -113,7 +114,7 @@ void check_draco_per_frame(const Animation& a, double tol) {
   DracoFrameCodec draco;
   std::string err;
   ASSERT_TRUE(draco.init(a.vertex_count, a.faces, &err)) << err;
-  const BenchContext ctx{a, tol, L, draco, draco.connectivity_bytes()};
+  const BenchContext ctx{a, tol, L, draco, draco.connectivity_bytes(), 3};
   DracoPerFrameChoice choice;
   ASSERT_TRUE(choose_draco_per_frame(ctx, &choice, &err)) << err;
   ASSERT_TRUE(choice.all_meet);
@@ -226,6 +227,7 @@ TEST(BenchRunner, RejectsUnknownMethodAndBadTolerance) {
   const Animation a = waving_sheet(4, 2);
   EXPECT_THROW(run_bench("x", a, 1e-3, {"zip"}, nullptr), std::invalid_argument);
   EXPECT_THROW(run_bench("x", a, 0.0, nullptr), std::invalid_argument);
+  EXPECT_THROW(run_bench("x", a, 1e-3, {"dcurve"}, nullptr, 4), std::invalid_argument);
 }
 
 TEST(BenchPlot, OnePanelPerInputAndOneMarkerPerResult) {
@@ -265,8 +267,8 @@ TEST(BenchCli, JsonCsvAndPlotFromFrameFolder) {
   ASSERT_TRUE(write_frame_folder(dir, waving_sheet(8, 3), "obj", &err)) << err;
   const std::string csv = testing::TempDir() + "/bench.csv", svg = testing::TempDir() + "/bench.svg";
   int status = 0;
-  const std::string out = run_cli(dir + " --tolerance 1e-2 --tolerance 1e-3 --methods dcurve,quantized_delta --json --csv " +
-                                      csv + " --plot " + svg,
+  const std::string out = run_cli(dir + " --tolerance 1e-2 --tolerance 1e-3 --methods dcurve,quantized_delta --effort 1 " +
+                                      "--json --csv " + csv + " --plot " + svg,
                                   &status);
   ASSERT_EQ(status, 0) << out;
   const nlohmann::json j = nlohmann::json::parse(out);
@@ -279,6 +281,16 @@ TEST(BenchCli, JsonCsvAndPlotFromFrameFolder) {
                           "decode_vertices_per_second", "meets_tolerance", "settings"})
     EXPECT_TRUE(j["results"][0]["methods"][0].contains(key)) << key;
   EXPECT_TRUE(j["results"][0]["methods"][0]["ratio_to_draco_per_frame"].is_null());  // Draco not run
+  // dcurve ran at the effort asked for: the file `dcurve encode --effort 1` writes.
+  Animation sheet;
+  ASSERT_TRUE(read_frame_folder(dir, &sheet, &err)) << err;
+  EncodeOptions effort1;
+  effort1.tolerance = 1e-2;
+  effort1.effort = 1;
+  std::vector<uint8_t> bytes;
+  ASSERT_TRUE(encode_animation(sheet, effort1, &bytes, nullptr, &err)) << err;
+  EXPECT_EQ(j["results"][0]["methods"][0]["bytes"], bytes.size());
+  EXPECT_NE(j["results"][0]["methods"][0]["settings"].get<std::string>().find("effort=1"), std::string::npos);
   std::ifstream c(csv);
   std::string line;
   int lines = 0;
@@ -293,6 +305,8 @@ TEST(BenchCli, BadInputsFailClearly) {
   EXPECT_EQ(status, 1);
   EXPECT_NE(out.find("/nonexistent/folder"), std::string::npos) << out;
   out = run_cli("--methods zip " + testing::TempDir(), &status);
+  EXPECT_EQ(status, 2) << out;
+  out = run_cli("--effort 0 " + testing::TempDir(), &status);
   EXPECT_EQ(status, 2) << out;
   out = run_cli("--protocol paper2024 " + testing::TempDir(), &status);
   EXPECT_EQ(status, 1);
