@@ -18,7 +18,7 @@ struct BenchContext {
   double diagonal;                  // L, model units
   const DracoFrameCodec& draco;     // calibrated on anim's connectivity
   uint64_t connectivity_charge;     // Draco edgebreaker connectivity bytes, paid once by non-Draco methods
-  int dcurve_effort;                // EncodeOptions::effort of the dcurve method, in [1, 3]
+  int dcurve_effort;                // EncodeOptions::effort of the dcurve method
 };
 
 // Each returns false with *error set when the method cannot run at all; otherwise fills

@@ -44,7 +44,7 @@ InputResult run_bench(const std::string& name, const Animation& anim, double tol
   std::string err;
   if (!validate_animation(anim, &err)) throw std::invalid_argument(name + ": " + err);
   if (!(tolerance > 0 && tolerance <= 0.5)) throw std::invalid_argument("tolerance must be in (0, 0.5]");
-  if (dcurve_effort < 1 || dcurve_effort > 3) throw std::invalid_argument("dcurve effort must be 1, 2 or 3");
+  if (dcurve_effort < kMinEffort || dcurve_effort > kMaxEffort) throw std::invalid_argument("dcurve effort out of range");
   std::vector<const MethodEntry*> chosen;
   for (const auto& m : kMethods)
     if (methods.empty() || std::find(methods.begin(), methods.end(), m.name) != methods.end()) chosen.push_back(&m);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "encoder/encoder.h"
 #include "encoder/io/frames.h"
 
 namespace dcurve::bench {
@@ -35,12 +36,13 @@ const std::vector<std::string>& all_methods();
 
 // Runs `methods` (names from all_methods(); empty = all) on `anim` at max error `tolerance`
 // (fraction of the rest-pose diagonal, in (0, 0.5]). `progress` (may be empty) gets the
-// fraction done in [0, 1]; `dcurve_effort` (EncodeOptions::effort, 1..3) is how widely the
-// dcurve method's encoder searches. Throws std::invalid_argument on an invalid animation,
-// tolerance, method name or effort; a method that fails is reported with meets_tolerance = false.
+// fraction done in [0, 1]; `dcurve_effort` (EncodeOptions::effort, in [kMinEffort,
+// kMaxEffort]) is how widely the dcurve method's encoder searches. Throws
+// std::invalid_argument on an invalid animation, tolerance, method name or effort; a method
+// that fails is reported with meets_tolerance = false.
 InputResult run_bench(const std::string& name, const Animation& anim, double tolerance,
                       const std::vector<std::string>& methods, const std::function<void(double)>& progress,
-                      int dcurve_effort = 3);
+                      int dcurve_effort = EncodeOptions().effort);
 
 // All methods.
 InputResult run_bench(const std::string& name, const Animation& anim, double tolerance,

@@ -72,7 +72,7 @@ Action add_bench(CLI::App& app) {
     std::string csv, plot, protocol;
     bool json = false;
     uint32_t max_frames = 0;
-    int effort = 3;
+    int effort = EncodeOptions().effort;
   };
   auto o = std::make_shared<Opts>();
   app.add_option("inputs", o->inputs, "Frame folders, scene files or built-in scene names (none: built-in corpus)");
@@ -88,7 +88,7 @@ Action add_bench(CLI::App& app) {
   app.add_option("--effort", o->effort,
                  "dcurve's encode effort (as dcurve encode --effort): 3 walks the residual grids by trial encodes, "
                  "2 tries two side by side, 1 encodes once; lower is faster")
-      ->check(CLI::Range(1, 3))
+      ->check(CLI::Range(kMinEffort, kMaxEffort))
       ->capture_default_str();
   app.add_flag("--json", o->json, "Print one JSON object on stdout instead of the table");
   app.add_option("--csv", o->csv, "Also write the results as CSV to this file");

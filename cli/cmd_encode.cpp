@@ -16,7 +16,7 @@ Action add_encode(CLI::App& app) {
     std::string input, output;
     double tolerance = 1e-3;
     bool json = false, no_connectivity = false, exact_faces = false, keep_all_motions = false;
-    int threads = 0, effort = 3;
+    int threads = 0, effort = EncodeOptions().effort;
     std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto";
     uint32_t curve_points = 64;
   };
@@ -54,7 +54,7 @@ Action add_encode(CLI::App& app) {
                  "Search effort with --grid auto: 3 walks the grids by trial encodes (about four encodes), "
                  "2 tries two grids side by side, 1 encodes once on a grid 6x finer than the coarsest. "
                  "Lower is faster; at 1e-3 files grew by up to 3.2 % (2) and 10.3 % (1) on the corpus")
-      ->check(CLI::Range(1, 3))
+      ->check(CLI::Range(kMinEffort, kMaxEffort))
       ->capture_default_str();
   app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")
       ->check(CLI::Range(2, 1000000))

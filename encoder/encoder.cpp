@@ -142,7 +142,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
   // The grid is chosen by whole plain encodes, which see the faces, curves and low-rank
   // model the file keeps: cheaper proxies (the residual layer alone, fewer coding orders)
   // ranked the grids wrongly on half of the corpus.
-  if (opt.grid_refinement > 0 || opt.effort == 1) {
+  if (opt.grid_refinement > 0 || opt.effort == kMinEffort) {
     m.residual = make_grid(anim, opt.tolerance * L, opt.grid_refinement > 0 ? opt.grid_refinement : kUntriedRefinement);
     return quantize_to_grid(anim, m.residual, &out->rounded, error);
   }
@@ -165,7 +165,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                       return SIZE_MAX;
                     return size_t(bytes);
                   },
-                  opt.effort >= 3 ? GridSearch::Walk : GridSearch::Bracket);
+                  opt.effort == kMaxEffort ? GridSearch::Walk : GridSearch::Bracket);
   m.residual = choice.grid;
   *have_plain = choice.whole;
   if (choice.whole) {
@@ -230,7 +230,8 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (opt.low_rank < -1 || opt.low_rank > 64) return fail(error, "low-rank setting must be -1 (auto), 0 (off) or 1..64");
   if (!(opt.grid_refinement == 0 || (opt.grid_refinement >= 1 && opt.grid_refinement <= 16)))
     return fail(error, "grid refinement must be 0 (chosen by trial encodes) or in [1, 16]");
-  if (opt.effort < 1 || opt.effort > 3) return fail(error, "effort must be 1, 2 or 3");
+  if (opt.effort < kMinEffort || opt.effort > kMaxEffort)
+    return fail(error, "effort must be in [" + std::to_string(kMinEffort) + ", " + std::to_string(kMaxEffort) + "]");
   if (opt.model != ModelChoice::None && opt.low_rank > 0 && opt.keep_all_motions)
     return fail(error, "a low-rank model cannot be combined with a PDE motion model");
   if (!(bbox_diagonal(anim.frames[0]) > 0)) return fail(error, "rest pose has a zero bounding box (all vertices coincide)");

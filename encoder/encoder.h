@@ -22,6 +22,9 @@ enum class ModelChoice {
 // Segment lengths the rate control chooses from (the first wins ties).
 constexpr uint32_t kAutoSegmentFrames[] = {8, 4, 16};
 
+// EncodeOptions::effort's range; the highest is the default.
+constexpr int kMinEffort = 1, kMaxEffort = 3;
+
 struct EncodeOptions {
   double tolerance = 1e-3;    // max error, fraction of the rest-pose bounding-box diagonal, in (0, 0.5]
   ModelChoice model = ModelChoice::None;
@@ -50,7 +53,7 @@ struct EncodeOptions {
   // the smaller file wins. 1: one encode on a grid 6x finer than the coarsest. Eleven inputs
   // at 1e-3 against 3: 2 came within 3.2 % (and 9.6 % smaller on the full rope), 1 within
   // 10.3 % (encoder/rate/README.md). The low-rank choice runs in full at every level.
-  int effort = 3;
+  int effort = kMaxEffort;
   // With a PDE model: keep every fitted motion even where it does not pay for its
   // coefficients (in-betweens then follow the model everywhere; the file may be larger).
   // Off: only paying motions are kept, and the file is the one without a PDE model when

@@ -114,7 +114,7 @@ void check_draco_per_frame(const Animation& a, double tol) {
   DracoFrameCodec draco;
   std::string err;
   ASSERT_TRUE(draco.init(a.vertex_count, a.faces, &err)) << err;
-  const BenchContext ctx{a, tol, L, draco, draco.connectivity_bytes(), 3};
+  const BenchContext ctx{a, tol, L, draco, draco.connectivity_bytes(), EncodeOptions().effort};
   DracoPerFrameChoice choice;
   ASSERT_TRUE(choose_draco_per_frame(ctx, &choice, &err)) << err;
   ASSERT_TRUE(choice.all_meet);

@@ -400,8 +400,8 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
     int32_t* qf = q->data() + size_t(f) * stride;
     double best = HUGE_VAL;
     size_t best_index = SIZE_MAX;
-    const std::vector<AxisRun>* runs =
-        po.snap ? &frame_axis_runs(po, model.residual, frames[f].data(), V, radius, f, &scratch_runs) : nullptr;
+    const std::vector<AxisRun>& runs =
+        po.snap ? frame_axis_runs(po, model.residual, frames[f].data(), V, radius, f, &scratch_runs) : scratch_runs;
     const std::vector<PredictorChoice> candidates = candidates_for(*q, V, f, decoded, options, po);
     // The previous frame's kind and spatial mode usually win again: tried first, they give
     // the bound that drops the others early. Ties still go to the earliest in the list.
@@ -429,7 +429,7 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
                           [&](uint32_t u, int a) { return base[size_t(a) * V + u]; }, pred, weights);
         int32_t* qv = &scratch[size_t(v) * 3];
         if (po.snap)
-          snap_vertex(model.residual, &frames[f][size_t(v) * 3], &(*runs)[size_t(v) * 3], radius, po.distance_weight, pred,
+          snap_vertex(model.residual, &frames[f][size_t(v) * 3], &runs[size_t(v) * 3], radius, po.distance_weight, pred,
                       qv);
         uint8_t axis_max = 0;
         int classes[3];
