@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "codec/container.h"
+#include "codec/low_rank.h"
 #include "encoder/io/files.h"
 #include "encoder/rate/plan_report.h"
 
@@ -13,6 +14,13 @@ namespace dcurve::cli {
 namespace {
 
 const char* mode_name(FitMode m) { return m == FitMode::Displacement ? "displacement" : "absolute"; }
+// Raw bytes the frame poses add to the LRNK section (0 without poses).
+uint64_t pose_bytes(const Model& m) {
+  if (m.low_rank.poses.empty()) return 0;
+  Model bare = m;
+  bare.low_rank.poses.clear();
+  return low_rank_bytes(m).size() - low_rank_bytes(bare).size();
+}
 const char* layout_name(int l) { return l == 0 ? "exact" : l == 1 ? "traversal" : l == 2 ? "compact" : "none"; }
 
 // Counts of motions per basis (zero, pde8, pde32) and of Pde8 motions per case.
@@ -101,7 +109,9 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
             {"shift", m.low_rank.shift},
             {"mean_shift", m.low_rank.mean_shift},
             {"coefficient_shifts", m.low_rank.coeff_shifts},
-            {"basis_payload_bytes", m.low_rank.basis_payload.size()}}},
+            {"basis_payload_bytes", m.low_rank.basis_payload.size()},
+            {"posed", !m.low_rank.poses.empty()},
+            {"pose_bytes", pose_bytes(m)}}},
           {"sections", js}};
 }
 
@@ -143,10 +153,13 @@ void print_text(const nlohmann::json& j) {
     const auto& lr = j["low_rank"];
     if (lr["components"].get<uint32_t>() > 0)
       std::printf("  low-rank model (Model predictor): %u components, shift %u, mean shift %u, "
-                  "coefficient shifts %s, basis %llu bytes\n",
+                  "coefficient shifts %s, basis %llu bytes%s\n",
                   lr["components"].get<uint32_t>(), lr["shift"].get<uint32_t>(), lr["mean_shift"].get<uint32_t>(),
                   lr["coefficient_shifts"].empty() ? "none" : lr["coefficient_shifts"].dump().c_str(),
-                  (unsigned long long)lr["basis_payload_bytes"].get<uint64_t>());
+                  (unsigned long long)lr["basis_payload_bytes"].get<uint64_t>(),
+                  lr["posed"].get<bool>()
+                      ? (", posed: frame poses in " + std::to_string(lr["pose_bytes"].get<uint64_t>()) + " bytes").c_str()
+                      : "");
     const auto& p = r["predictors"];
     if (!p.is_null()) {
       std::printf("  predictors per frame and axis: %s; spatial corrections: %s; %s coding order\n",

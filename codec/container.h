@@ -12,7 +12,7 @@ namespace dcurve {
 // Version written by write_container. Readers accept any minor of their major: a newer minor
 // only adds optional sections and hint flags.
 constexpr uint16_t kFormatVersionMajor = 2;
-constexpr uint16_t kFormatVersionMinor = 4;
+constexpr uint16_t kFormatVersionMinor = 5;
 
 // Values (floats or grid values) a decoder may build for a file of `file_bytes` bytes:
 // max(2^23, 8192 * file_bytes), the bound that keeps a small hostile file from asking for

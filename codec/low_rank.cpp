@@ -20,6 +20,10 @@ int64_t predicted_coeff(const std::vector<int32_t>& c, size_t i, size_t K) {
 constexpr uint8_t kRangeCoded = 0x80;
 // Bit 7 of the mean-shift byte: K per-component coefficient shifts follow (format 2.3).
 constexpr uint8_t kCoeffShifts = 0x80;
+// Bit 6 of the mean-shift byte: frame poses follow the basis payload (format 2.5). The mean
+// shift itself needs bits 0-4 (at most 30); bit 5 is reserved and must be 0.
+constexpr uint8_t kPosed = 0x40;
+constexpr uint8_t kMeanShiftMask = 0x1f;
 
 // A range-coded stream may hold many values per byte; a decoder allocates F * K values only
 // when F * K <= 4096 + 64 * stream bytes (the writer keeps svarints beyond that).
@@ -45,6 +49,25 @@ std::vector<uint8_t> range_coded_differences(const std::vector<int32_t>& stored,
   for (size_t i = 0; i < stored.size(); ++i)
     coder.encode(enc, contexts ? coeff_context(stored, i, K) : 0, 0, difference(stored, i, K));
   return enc.finish();
+}
+
+// Reads a range-coded stream of `count` values (stream_size varint, then the stream) into
+// *out through store(i, value), which checks each value's range: the inverse of
+// range_coded_differences. False on a size the remaining bytes or the count cannot match, a
+// rejected value, or a stream that does not end exactly.
+template <class Store>
+bool decode_differences(ByteReader& r, uint64_t count, size_t K, bool contexts, std::vector<int32_t>* out,
+                        const Store& store) {
+  const uint64_t stream_size = r.varint();
+  if (!r.ok || stream_size > r.remaining() || !range_count_plausible(count, stream_size)) return false;
+  RangeDecoder dec(r.take(size_t(stream_size)), size_t(stream_size));
+  AdaptiveIntCoder coder(contexts ? kCoeffContexts : 1, 1);
+  out->assign(size_t(count), 0);
+  for (size_t i = 0; i < out->size(); ++i) {
+    const int ctx = contexts ? coeff_context(*out, i, K) : 0;
+    if (!store(i, predicted_coeff(*out, i, K) + coder.decode(dec, ctx, 0))) return false;
+  }
+  return dec.at_clean_end();
 }
 
 bool has_coeff_shifts(const LowRankModel& lr) {
@@ -73,7 +96,8 @@ std::vector<uint8_t> low_rank_bytes(const Model& m) {
   ByteWriter w;
   w.u8(uint8_t(lr.components | (ranged ? kRangeCoded : 0)));
   w.u8(uint8_t(lr.shift));
-  w.u8(uint8_t(lr.mean_shift | (shifted ? kCoeffShifts : 0)));
+  const bool posed = !lr.poses.empty();
+  w.u8(uint8_t(lr.mean_shift | (shifted ? kCoeffShifts : 0) | (posed ? kPosed : 0)));
   if (shifted)
     for (uint8_t s : lr.coeff_shifts) w.u8(s);
   if (ranged) {
@@ -84,6 +108,14 @@ std::vector<uint8_t> low_rank_bytes(const Model& m) {
   }
   w.varint(lr.basis_payload.size());
   w.bytes(lr.basis_payload.data(), lr.basis_payload.size());
+  if (posed) {
+    // Poses move smoothly from frame to frame, as coefficients do: the same extrapolation
+    // and the same range coder, one "component" per pose value.
+    for (int32_t c : lr.pose_centre) w.varint(zigzag_encode(c));
+    const std::vector<uint8_t> poses = range_coded_differences(lr.poses, kLowRankPoseValues, true);
+    w.varint(poses.size());
+    w.bytes(poses.data(), poses.size());
+  }
   return std::move(w.data());
 }
 
@@ -94,9 +126,9 @@ bool parse_low_rank(ByteReader& r, Model* m) {
   lr.components = first & ~kRangeCoded;
   lr.shift = r.u8();
   const uint8_t third = r.u8();
-  lr.mean_shift = third & ~kCoeffShifts;
+  lr.mean_shift = third & kMeanShiftMask;
   if (!r.ok || lr.components == 0 || lr.components > kMaxLowRankComponents || lr.shift > kMaxLowRankShift ||
-      lr.mean_shift > lr.shift)
+      lr.mean_shift > lr.shift || (third & ~(kMeanShiftMask | kCoeffShifts | kPosed)) != 0)
     return false;
   const size_t K = lr.components;
   lr.coeff_shifts.clear();
@@ -114,17 +146,7 @@ bool parse_low_rank(ByteReader& r, Model* m) {
     return true;
   };
   if (ranged) {
-    const uint64_t stream_size = r.varint();
-    if (!r.ok || stream_size > r.remaining() || !range_count_plausible(count, stream_size)) return false;
-    RangeDecoder dec(r.take(size_t(stream_size)), size_t(stream_size));
-    const bool contexts = !lr.coeff_shifts.empty();
-    AdaptiveIntCoder coder(contexts ? kCoeffContexts : 1, 1);
-    lr.coeffs.resize(size_t(count));
-    for (size_t i = 0; i < lr.coeffs.size(); ++i) {
-      const int ctx = contexts ? coeff_context(lr.coeffs, i, K) : 0;
-      if (!store(i, predicted_coeff(lr.coeffs, i, K) + coder.decode(dec, ctx, 0))) return false;
-    }
-    if (!dec.at_clean_end()) return false;
+    if (!decode_differences(r, count, K, !lr.coeff_shifts.empty(), &lr.coeffs, store)) return false;
   } else {
     if (count > r.remaining()) return false;  // >= 1 byte per coefficient
     lr.coeffs.resize(size_t(count));
@@ -143,6 +165,22 @@ bool parse_low_rank(ByteReader& r, Model* m) {
   const uint8_t* p = r.ok && n <= r.remaining() ? r.take(size_t(n)) : nullptr;
   if (!p) return false;
   lr.basis_payload.assign(p, p + n);
+  lr.poses.clear();
+  if (third & kPosed) {
+    for (int32_t& c : lr.pose_centre) {
+      const int64_t v = zigzag_decode(r.varint());
+      if (!r.ok || v < -kMaxLowRankPoseOffset || v > kMaxLowRankPoseOffset) return false;
+      c = int32_t(v);
+    }
+    auto store_pose = [&](size_t i, int64_t v) {
+      const int64_t limit = i % kLowRankPoseValues < 9 ? kMaxLowRankPoseMatrix : kMaxLowRankPoseOffset;
+      if (v < -limit || v > limit) return false;
+      lr.poses[i] = int32_t(v);
+      return true;
+    };
+    const uint64_t values = uint64_t(m->meta.frame_count) * kLowRankPoseValues;
+    if (!decode_differences(r, values, kLowRankPoseValues, true, &lr.poses, store_pose)) return false;
+  }
   return r.ok;
 }
 
@@ -156,6 +194,18 @@ void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_
     int64_t acc = int64_t(mean_and_basis[i]) * (int64_t(1) << up);
     for (uint32_t k = 0; k < K; ++k) acc += int64_t(c[k]) * int64_t(mean_and_basis[(size_t(k) + 1) * n + i]);
     out[i] = int32_t(std::clamp(round_shift(acc, lr.shift), -kLimit, kLimit));
+  }
+  if (lr.poses.empty()) return;
+  const int32_t* pose = lr.poses.data() + size_t(f) * kLowRankPoseValues;
+  for (size_t v = 0; v + 2 < n; v += 3) {
+    int64_t d[3];
+    for (int b = 0; b < 3; ++b)
+      d[b] = std::clamp(int64_t(out[v + size_t(b)]) - lr.pose_centre[b], -kMaxLowRankPoseReach, kMaxLowRankPoseReach);
+    for (int a = 0; a < 3; ++a) {
+      const int64_t turned = int64_t(pose[3 * a]) * d[0] + int64_t(pose[3 * a + 1]) * d[1] + int64_t(pose[3 * a + 2]) * d[2];
+      const int64_t x = int64_t(lr.pose_centre[a]) + pose[9 + a] + round_shift(turned, kLowRankPoseShift);
+      out[v + size_t(a)] = int32_t(std::clamp(x, -kLimit, kLimit));
+    }
   }
 }
 

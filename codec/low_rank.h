@@ -17,6 +17,16 @@ constexpr uint32_t kMaxLowRankShift = 30;
 // accepted file: |mean| < 2^31 (int32), |coeff|, |basis| <= 2^24, K <= 64.
 constexpr int64_t kMaxLowRankCoeff = int64_t(1) << 24;
 constexpr int64_t kMaxLowRankBasis = int64_t(1) << 24;
+// Frame poses (format 2.5, LowRankModel::poses): per frame a 3 x 3 matrix in units of
+// 2^-kLowRankPoseShift, |entries| <= kMaxLowRankPoseMatrix, then a translation in grid units,
+// |t| <= kMaxLowRankPoseOffset; the centre too is within kMaxLowRankPoseOffset. A posed-space
+// prediction enters the matrix product as its difference to the centre clamped to
+// +-kMaxLowRankPoseReach, so every product stays far inside int64 (3 * 2^20 * 2^26 < 2^48).
+constexpr uint32_t kLowRankPoseValues = 12;
+constexpr uint32_t kLowRankPoseShift = 16;
+constexpr int64_t kMaxLowRankPoseMatrix = int64_t(1) << 20;
+constexpr int64_t kMaxLowRankPoseOffset = int64_t(1) << 30;
+constexpr int64_t kMaxLowRankPoseReach = int64_t(1) << 26;
 
 // Raw LRNK payload of model.low_rank (components > 0, coeffs sized frame_count * K).
 std::vector<uint8_t> low_rank_bytes(const Model& model);
@@ -35,7 +45,9 @@ inline int64_t round_shift(int64_t x, uint32_t s) {
 
 // The Model predictor of frame f (grid units, clamped to +-2^30) for n = V * 3 coordinates:
 // mean and basis are the decoded pseudo-frames (mean first, then K basis vectors, n each,
-// already checked against kMaxLowRankBasis), out receives n values.
+// already checked against kMaxLowRankBasis), out receives n values. With poses, each
+// vertex's three posed-space values are mapped by frame f's pose (format_spec/dcrv.md
+// section 17).
 void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_basis, size_t n, int32_t* out);
 
 }  // namespace dcurve

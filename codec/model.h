@@ -90,6 +90,14 @@ struct LowRankModel {
   // are small needs coarser coefficients for the same prediction error.
   std::vector<uint8_t> coeff_shifts;
   std::vector<uint8_t> basis_payload;  // residual-layer payload of the K + 1 pseudo-frames
+  // Empty, or one pose per frame (format 2.5): frame_count * kLowRankPoseValues values, frame
+  // f's at f * kLowRankPoseValues: a 3 x 3 matrix m (row-major, units of 2^-kLowRankPoseShift,
+  // |m| <= kMaxLowRankPoseMatrix) then a translation t (grid units, |t| <= 2^30). The mean and
+  // basis then describe the frames in a common pose, and frame f's prediction is
+  // pose_centre + t + m (p - pose_centre) for the posed-space prediction p of each vertex
+  // (codec/low_rank.h): a rotating or travelling body keeps few components.
+  std::vector<int32_t> poses;
+  int32_t pose_centre[3] = {0, 0, 0};  // grid units, |c| <= 2^30
 };
 
 struct Model {

@@ -107,6 +107,7 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   LowRankChoiceOptions lro;
   lro.components = opt.low_rank;
   lro.first_frame_anchor = opt.low_rank_first_frame;
+  lro.posed_anchors = opt.low_rank_poses;
   lro.threads = opt.threads;
   lro.weights = start.weights;
   lro.traversal = start.traversal.get();

@@ -44,6 +44,9 @@ struct EncodeOptions {
   // Whether the low-rank choice also screens components around the first frame, besides
   // around the frame average (for studies: false screens the average alone).
   bool low_rank_first_frame = true;
+  // Whether it also screens each of those anchors in a common pose (frame poses stored with
+  // the model, format 2.5), for frames that turn (for studies: false screens unposed ones).
+  bool low_rank_poses = true;
   // Residual grid: 0 chosen by trial encodes (encoder/rate/grid.h; most inputs cost four
   // plain encodes), else the coarsest safe grid made this many times finer, in [1, 16],
   // which skips the trials.

@@ -23,14 +23,16 @@ echo "== ASan + UBSan build and tests"
 # and Guarantee.ChosenGridEncodesLikeTheSameGridGiven, 89 and 53 s under ASan once the
 # low-rank rescue trials of commit 6286ac9 ran in them) and the PDE in-between check
 # (Guarantee.PdeModelKeepsTheGuaranteeAndSmoothInBetweens, 73 s under ASan, alone the
-# pass's longest test): the same encoder and decoder paths run under the sanitizers in the
-# smaller encode, fit, motion-choice, residual and low-rank tests.
+# pass's longest test), and the posed-against-unposed comparison
+# (LowRankPose.TurningBodyGetsAPosedModelWithinTolerance, two whole encodes): the same encoder
+# and decoder paths run under the sanitizers in the smaller encode, fit, motion-choice,
+# residual and low-rank tests (LowRankPose.DamagedPosesAreRejected encodes a posed file).
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
   -DDCURVE_SANITIZE=ON -DDCURVE_TOOLS=OFF -DDCURVE_MICRO_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON >/dev/null
 cmake --build build-sanitize -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-sanitize --output-on-failure -j"$jobs" \
-  -E '^CorpusExt/Guarantee|^Corpus/BuiltinGuarantee|^MotionChoice\.PdeEncodeIsNeverLargerThanNone$|^Guarantee\.ChosenGridEncodesLikeTheSameGridGiven$|^Guarantee\.PdeModelKeepsTheGuaranteeAndSmoothInBetweens$'
+  -E '^CorpusExt/Guarantee|^Corpus/BuiltinGuarantee|^MotionChoice\.PdeEncodeIsNeverLargerThanNone$|^Guarantee\.ChosenGridEncodesLikeTheSameGridGiven$|^Guarantee\.PdeModelKeepsTheGuaranteeAndSmoothInBetweens$|^LowRankPose\.TurningBodyGetsAPosedModelWithinTolerance$'
 
 if [ -x scripts/fuzz.sh ]; then
   echo "== Decoder fuzzing (bounded)"

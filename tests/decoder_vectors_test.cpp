@@ -12,6 +12,7 @@
 
 #include "codec/container.h"
 #include "codec/faces.h"
+#include "codec/low_rank.h"
 #include "codec/residual.h"
 #include "decoder/dcurve.hpp"
 #include "decoder/model_prediction.h"
@@ -26,10 +27,10 @@ struct Vector {
   WriteOptions options;
 };
 
-// A hand-made low-rank model (LRNK, with coefficient shifts) on `m`, and its residual
-// re-coded with the Model predictor on every frame: the grid values, hence the expected
-// positions, do not change.
-Model with_low_rank(Model m) {
+// A hand-made low-rank model (LRNK, with coefficient shifts, and with frame poses when
+// `posed`: format 2.5) on `m`, and its residual re-coded with the Model predictor on every
+// frame: the grid values, hence the expected positions, do not change.
+Model with_low_rank(Model m, bool posed = false) {
   const uint32_t V = m.meta.vertex_count, F = m.meta.frame_count, K = 2;
   LowRankModel& lr = m.low_rank;
   lr.components = K;
@@ -48,6 +49,17 @@ Model with_low_rank(Model m) {
   PredictorPlan spatial = uniform_plan(
       {0, 1, 2}, std::vector<PredictorChoice>(3 * (K + 1), PredictorChoice{PredictorKind::None, 0, 0, SpatialMode::Parallelogram}));
   lr.basis_payload = encode_residuals(pseudo, mean_and_basis, &spatial);
+  if (posed) {
+    // Not rotations (nothing requires it): a growing turn about z, a squeeze along z, a drift.
+    const int32_t one = int32_t(1) << kLowRankPoseShift;
+    lr.pose_centre[0] = 5;
+    lr.pose_centre[1] = -6;
+    lr.pose_centre[2] = 7;
+    for (uint32_t f = 0; f < F; ++f) {
+      const int32_t turn = int32_t(f) * 3000, i = int32_t(f);
+      lr.poses.insert(lr.poses.end(), {one, -turn, 0, turn, one, 0, 0, 0, one - 500 * i, i, -2 * i, 3});
+    }
+  }
   std::vector<int32_t> prediction;
   std::string err;
   if (!model_grid_prediction(m, UINT64_MAX, &prediction, &err)) ADD_FAILURE() << err;
@@ -113,6 +125,7 @@ std::vector<Vector> recipes() {
   Model low_rank_sheet = testing::sheet_model(5, 6);
   low_rank_sheet.faces = traversal_order(low_rank_sheet.faces);
   v.push_back({"low_rank", with_low_rank(low_rank_sheet), {}});
+  v.push_back({"low_rank_posed", with_low_rank(low_rank_sheet, true), {}});
   return v;
 }
 

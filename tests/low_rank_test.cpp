@@ -361,23 +361,15 @@ TEST(LowRank, DamagedSectionIsRejected) {
   std::string err;
   auto original = Decoder::open_memory(bytes.data(), bytes.size(), &err);
   ASSERT_TRUE(original) << err;
-  std::vector<float> a(size_t(anim.vertex_count) * 3), b(a.size());
   for (size_t cut = 0; cut < raw.size(); ++cut) {
     const std::vector<uint8_t> file = with_low_rank_payload(bytes, {raw.begin(), raw.begin() + std::ptrdiff_t(cut)});
     EXPECT_FALSE(Decoder::open_memory(file.data(), file.size(), &err)) << "truncated to " << cut;
   }
+  // A change the prediction does not see may decode; then it decodes to the same frames.
   for (size_t i = 0; i < raw.size(); ++i) {
     std::vector<uint8_t> damaged = raw;
     damaged[i] ^= 0x5a;
-    const std::vector<uint8_t> file = with_low_rank_payload(bytes, damaged);
-    auto dec = Decoder::open_memory(file.data(), file.size(), &err);
-    if (!dec) continue;
-    // A change the prediction does not see may decode; then it decodes to the same frames.
-    for (uint32_t f = 0; f < dec->frame_count(); ++f) {
-      dec->evaluate_frame(f, a.data());
-      original->evaluate_frame(f, b.data());
-      ASSERT_EQ(a, b) << "byte " << i;
-    }
+    ASSERT_TRUE(test::refused_or_decodes_as(with_low_rank_payload(bytes, damaged), *original)) << "byte " << i;
   }
 }
 

@@ -72,6 +72,21 @@ inline double decoded_max_error(const std::vector<uint8_t>& bytes, const Animati
   return measure_error(anim, decoded).max_error;
 }
 
+// Whether `file` is either refused or decodes every frame exactly as `original` (an open
+// decoder of the undamaged file) does: what a damaged byte that no check can see must do.
+inline ::testing::AssertionResult refused_or_decodes_as(const std::vector<uint8_t>& file, const Decoder& original) {
+  std::string err;
+  auto dec = Decoder::open_memory(file.data(), file.size(), &err);
+  if (!dec) return ::testing::AssertionSuccess();
+  std::vector<float> a(size_t(original.vertex_count()) * 3), b(a.size());
+  for (uint32_t f = 0; f < dec->frame_count(); ++f) {
+    dec->evaluate_frame(f, a.data());
+    original.evaluate_frame(f, b.data());
+    if (a != b) return ::testing::AssertionFailure() << "decodes frame " << f << " differently";
+  }
+  return ::testing::AssertionSuccess();
+}
+
 // A unit square as two triangles in a text format ("obj", "off" or "ply"), its second
 // vertex written as `v1` (three numbers, or a bad value to test the readers).
 inline std::string square(const std::string& ext, const std::string& v1) {

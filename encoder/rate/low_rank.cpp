@@ -262,6 +262,8 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
     const double unit = std::ldexp(1.0, lr.coeff_shifts[j % K]);
     if (!round_to(std::nearbyint(weights[j] / unit) * unit, kMaxLowRankCoeff, &lr.coeffs[j])) return false;
   }
+  lr.poses = pca.poses;
+  std::copy(pca.pose_centre, pca.pose_centre + 3, lr.pose_centre);
   model->low_rank = std::move(lr);
   if (mean_and_basis) *mean_and_basis = std::move(values);
   return true;

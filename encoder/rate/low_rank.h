@@ -21,6 +21,11 @@ struct GridComponents {
   std::vector<std::vector<double>> weights;    // K x F
   std::vector<std::vector<double>> amplitudes; // K x n
   uint32_t anchor = kMeanAnchor;
+  // Empty, or the frame poses the components are posed by (LowRankModel::poses): the values
+  // above are then those of the frames carried into a common pose (encoder/rate/frame_poses.h),
+  // and quantize_low_rank stores the poses with the model.
+  std::vector<int32_t> poses;
+  int32_t pose_centre[3] = {0, 0, 0};
 };
 
 // PCA of the grid values q (frame-major, F frames of n values) through the F x F Gram matrix
@@ -58,6 +63,8 @@ struct BasisMemo {
 // coefficients fine enough that their rounding moves a prediction by at most basis_step;
 // codes the mean and basis with the residual coder (model's faces or curves give the
 // neighbours) on up to `threads` threads (0: all cores; the bytes never depend on it).
+// q (may be null) are the grid values the coefficients are refitted to: the input's, or with
+// poses the posed frames the components were taken from.
 // memo (may be null; the same pca and model on every call) makes the result no different,
 // only faster, and so does traversal (may be null: build_traversal(*model), when the caller
 // has it already). mean_and_basis (may be null) receives the values coded, mean then the K

@@ -25,6 +25,9 @@ struct LowRankChoiceOptions {
   uint32_t max_trials = 1;
   // Also screen components around the first frame, besides around the frame average.
   bool first_frame_anchor = true;
+  // Also screen each anchor's components in a common pose (frame poses stored with the
+  // model, format 2.5) when the frames turn far enough against frame 0 for it to matter.
+  bool posed_anchors = true;
   // Screen the counts whose section outweighs today's residual payload at the first basis
   // step at coarser steps (upwards, while each saves at least half its section), and give
   // the best of them a trial of its own.
