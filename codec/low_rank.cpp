@@ -169,12 +169,11 @@ bool parse_low_rank(ByteReader& r, Model* m) {
   if (third & kPosed) {
     for (int32_t& c : lr.pose_centre) {
       const int64_t v = zigzag_decode(r.varint());
-      if (!r.ok || v < -kMaxLowRankPoseOffset || v > kMaxLowRankPoseOffset) return false;
+      if (!r.ok || !low_rank_pose_centre_ok(v)) return false;
       c = int32_t(v);
     }
     auto store_pose = [&](size_t i, int64_t v) {
-      const int64_t limit = i % kLowRankPoseValues < 9 ? kMaxLowRankPoseMatrix : kMaxLowRankPoseOffset;
-      if (v < -limit || v > limit) return false;
+      if (!low_rank_pose_value_ok(i, v)) return false;
       lr.poses[i] = int32_t(v);
       return true;
     };

@@ -2,6 +2,7 @@
 // Model predictor uses (format_spec/dcrv.md section 17). Everything a prediction depends on
 // is integer, so encoder and decoder compute bit-identical values on every platform.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -27,6 +28,14 @@ constexpr uint32_t kLowRankPoseShift = 16;
 constexpr int64_t kMaxLowRankPoseMatrix = int64_t(1) << 20;
 constexpr int64_t kMaxLowRankPoseOffset = int64_t(1) << 30;
 constexpr int64_t kMaxLowRankPoseReach = int64_t(1) << 26;
+
+// Whether v is a valid pose value at index i of LowRankModel::poses (a matrix entry or a
+// translation, by i's place in its frame's kLowRankPoseValues), or of the centre (i unused).
+inline bool low_rank_pose_value_ok(size_t i, int64_t v) {
+  const int64_t limit = i % kLowRankPoseValues < 9 ? kMaxLowRankPoseMatrix : kMaxLowRankPoseOffset;
+  return v >= -limit && v <= limit;
+}
+inline bool low_rank_pose_centre_ok(int64_t c) { return c >= -kMaxLowRankPoseOffset && c <= kMaxLowRankPoseOffset; }
 
 // Raw LRNK payload of model.low_rank (components > 0, coeffs sized frame_count * K).
 std::vector<uint8_t> low_rank_bytes(const Model& model);

@@ -100,12 +100,10 @@ bool validate_model(const Model& m, std::string* error) {
     }
     if (!lr.poses.empty()) {
       if (lr.poses.size() != size_t(F) * kLowRankPoseValues) return fail(error, "low-rank pose count mismatch");
-      for (size_t i = 0; i < lr.poses.size(); ++i) {
-        const int64_t limit = i % kLowRankPoseValues < 9 ? kMaxLowRankPoseMatrix : kMaxLowRankPoseOffset;
-        if (lr.poses[i] < -limit || lr.poses[i] > limit) return fail(error, "low-rank pose value out of range");
-      }
+      for (size_t i = 0; i < lr.poses.size(); ++i)
+        if (!low_rank_pose_value_ok(i, lr.poses[i])) return fail(error, "low-rank pose value out of range");
       for (int32_t c : lr.pose_centre)
-        if (c < -kMaxLowRankPoseOffset || c > kMaxLowRankPoseOffset) return fail(error, "low-rank pose centre out of range");
+        if (!low_rank_pose_centre_ok(c)) return fail(error, "low-rank pose centre out of range");
     }
     const uint64_t values = (uint64_t(lr.components) + 1) * V * 3;
     if (values > std::max<uint64_t>(kMaxValuesFloor, kMaxValuesPerPayloadByte * lr.basis_payload.size()))
