@@ -17,7 +17,7 @@ Action add_encode(CLI::App& app) {
     double tolerance = 1e-3;
     bool json = false, no_connectivity = false, exact_faces = false, keep_all_motions = false;
     int threads = 0, effort = EncodeOptions().effort;
-    std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto";
+    std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto", chunk_frames = "auto";
     uint32_t curve_points = 64;
   };
   auto o = std::make_shared<Opts>();
@@ -56,6 +56,11 @@ Action add_encode(CLI::App& app) {
                  "Lower is faster; at 1e-3 files grew by up to 3.2 % (2) and 10.3 % (1) on the corpus")
       ->check(CLI::Range(kMinEffort, kMaxEffort))
       ->capture_default_str();
+  app.add_option("--chunk-frames", o->chunk_frames,
+                 "Frames per independently decodable chunk: auto (chosen by the encoder by measured size) or "
+                 "1..4096. A decoder decodes one chunk to reach any of its frames and holds two")
+      ->check(CLI::IsMember({"auto"}) | CLI::Range(1u, kMaxChunkFrames))
+      ->capture_default_str();
   app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")
       ->check(CLI::Range(2, 1000000))
       ->capture_default_str();
@@ -86,6 +91,7 @@ Action add_encode(CLI::App& app) {
     eo.segment_frames = o->segment_frames == "auto" ? 0 : uint32_t(std::stoul(o->segment_frames));
     eo.grid_refinement = o->grid == "auto" ? 0.0 : std::stod(o->grid);
     eo.effort = o->effort;
+    eo.chunk_frames = o->chunk_frames == "auto" ? 0 : uint32_t(std::stoul(o->chunk_frames));
     eo.keep_all_motions = o->keep_all_motions;
     eo.curve_points = o->curve_points;
     eo.progress = progress_bar("encode");
@@ -119,6 +125,7 @@ Action add_encode(CLI::App& app) {
                         {"motions_kept", rep.motions_kept},
                         {"low_rank_components", rep.low_rank_components},
                         {"grid_refinement", rep.grid_refinement},
+                        {"chunk_frames", rep.chunk_frames},
                         {"effort", o->effort},
                         {"low_rank_bytes", rep.low_rank_bytes},
                         {"curve_fallback", rep.curve_fallback}};

@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "codec/container.h"
 #include "codec/low_rank.h"
+#include "codec/residual.h"
 #include "encoder/io/files.h"
 #include "encoder/rate/plan_report.h"
 
@@ -103,6 +104,8 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
             {"grid_step", m.residual.step},
             {"origin", {m.residual.origin[0], m.residual.origin[1], m.residual.origin[2]}},
             {"payload_bytes", m.residual.payload.size()},
+            {"chunk_frames", m.residual.chunk_frames},
+            {"chunks", chunk_count(m.meta.frame_count, m.residual.chunk_frames)},
             {"predictors", predictors}}},
           {"low_rank",
            {{"components", m.low_rank.components},
@@ -148,8 +151,9 @@ void print_text(const nlohmann::json& j) {
   const auto& r = j["residual"];
   if (r["present"].get<bool>())
   {
-    std::printf("  residual layer: grid step %.6g, %llu payload bytes\n", r["grid_step"].get<double>(),
-                (unsigned long long)r["payload_bytes"].get<uint64_t>());
+    std::printf("  residual layer: grid step %.6g, %llu payload bytes in %u chunks of %u frames\n",
+                r["grid_step"].get<double>(), (unsigned long long)r["payload_bytes"].get<uint64_t>(),
+                r["chunks"].get<uint32_t>(), r["chunk_frames"].get<uint32_t>());
     const auto& lr = j["low_rank"];
     if (lr["components"].get<uint32_t>() > 0)
       std::printf("  low-rank model (Model predictor): %u components, shift %u, mean shift %u, "

@@ -12,6 +12,7 @@
 #include "codec/error.h"
 #include "codec/faces.h"
 #include "codec/low_rank.h"
+#include "codec/residual.h"
 #include "codec/validate.h"
 
 namespace dcurve {
@@ -22,24 +23,16 @@ constexpr size_t kHeaderBytes = kContainerHeaderBytes;
 constexpr uint16_t kSectionRequired = 1;
 constexpr uint16_t kSectionZstd = 2;
 constexpr uint16_t kSectionKnownFlags = kSectionRequired | kSectionZstd;
-// File flags: the low 16 bits name features a reader must understand, the high 16 bits
-// are hints a reader may ignore. Bit 0 (2.1): compact section headers, varint sizes
-// instead of 28 fixed bytes (about 95 bytes less on a six-section file: 4 % of the
-// cantilever's).
+// File flags: the low 16 bits name features a reader must understand (none in 3.0), the
+// high 16 bits are hints a reader may ignore.
 constexpr uint32_t kFileRequiredFlagsMask = 0xffffu;
-constexpr uint32_t kFileCompactSections = 1;
-constexpr uint32_t kFileKnownRequiredFlags = kFileCompactSections;
+constexpr uint32_t kFileKnownRequiredFlags = 0;
 // Smallest compact section header: tag, flags, a one-byte size, CRC.
 constexpr size_t kCompactSectionHeaderMin = 4 + 1 + 1 + 4;
 // A decompressed section may be at most this many times its stored size (plus a floor):
 // the bound that keeps a hostile file from asking for unbounded memory.
 constexpr uint64_t kMaxExpansion = 4096;
 constexpr uint64_t kExpansionFloor = 1u << 20;
-#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
-constexpr bool kVerifyChecksums = false;  // lets a fuzzer's mutations reach the parsers
-#else
-constexpr bool kVerifyChecksums = true;
-#endif
 constexpr uint64_t kMaxRawSection = uint64_t(1) << 32;
 
 uint32_t fourcc(const char* s) {
@@ -92,7 +85,7 @@ std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteO
   return best;
 }
 
-// A compact section header (file flag kFileCompactSections): tag, u8 flags, varint stored
+// A section header: tag, u8 flags, varint stored
 // size, varint raw size only when compressed, CRC.
 void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
                  int level) {
@@ -164,12 +157,22 @@ std::vector<uint8_t> segment_bytes(const Model& m) {
 }
 
 
-std::vector<uint8_t> residual_bytes(const Model& m) {
+// Bytes of the residual payload's header and chunk index: what RESI holds (the chunks
+// follow the sections). The payload is the writer's own, so its index reads.
+size_t residual_index_bytes(const Model& m) {
+  const std::vector<uint8_t>& p = m.residual.payload;
+  ResidualIndex index;
+  const bool faces = p.size() > 1 && p[1] != 0;
+  return read_residual_index(p.data(), p.size(), m.meta.frame_count, faces, UINT64_MAX, &index, nullptr)
+             ? index.index_bytes
+             : p.size();
+}
+
+std::vector<uint8_t> residual_bytes(const Model& m, size_t index_bytes) {
   ByteWriter w;
   w.f64(m.residual.step);
   for (double o : m.residual.origin) w.f64(o);
-  w.varint(m.residual.payload.size());
-  w.bytes(m.residual.payload.data(), m.residual.payload.size());
+  w.bytes(m.residual.payload.data(), index_bytes);
   return std::move(w.data());
 }
 
@@ -247,11 +250,28 @@ bool parse_segments(ByteReader& r, Model* m) {
 bool parse_residual(ByteReader& r, Model* m) {
   m->residual.step = r.f64();
   for (double& o : m->residual.origin) o = r.f64();
-  uint64_t n = r.varint();
-  const uint8_t* p = r.ok && n <= r.remaining() ? r.take(size_t(n)) : nullptr;
-  if (!p) return false;
+  const size_t n = r.remaining();
+  const uint8_t* p = r.take(n);
+  if (!r.ok) return false;
   m->residual.payload.assign(p, p + n);
-  return r.ok;
+  return true;
+}
+
+// The RESI payload read from a head holds exactly the chunk index, which must describe
+// the chunk data_bytes that follow the head.
+bool check_chunk_index(Model* m, uint64_t data_bytes, std::string* error) {
+  ResidualIndex index;
+  std::string why;
+  const std::vector<uint8_t>& p = m->residual.payload;
+  if (!read_residual_index(p.data(), p.size(), m->meta.frame_count, !m->faces.empty(), data_bytes, &index, &why))
+    return fail(error, "section RESI: " + why);
+  if (index.index_bytes != p.size()) return fail(error, "section RESI has bytes after its chunk index");
+  if (index.data_bytes != data_bytes)
+    return fail(error, "chunk data (" + std::to_string(data_bytes) + " bytes) disagrees with the chunk index (" +
+                           std::to_string(index.data_bytes) + " bytes)");
+  m->residual.external_bytes = data_bytes;
+  m->residual.chunk_frames = index.chunk_frames;
+  return true;
 }
 
 }  // namespace
@@ -288,22 +308,31 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;
   sections.emplace_back(kMeta, meta_bytes(model));
   if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model.faces, options));
-  // Since 2.2 the common case of neither curves nor segments costs no section at all.
+  // The common case of neither curves nor segments costs no section at all.
   if (!is_singleton_curves(model.curves, model.meta.vertex_count)) sections.emplace_back(kCurves, curve_bytes(model));
   if (!model.segments.empty()) sections.emplace_back(kSegments, segment_bytes(model));
   if (model.low_rank.components > 0) sections.emplace_back(kLowRank, low_rank_bytes(model));
-  if (model.residual.step > 0) sections.emplace_back(kResidual, residual_bytes(model));
+  size_t index_bytes = 0;
+  if (model.residual.step > 0) {
+    index_bytes = residual_index_bytes(model);
+    sections.emplace_back(kResidual, residual_bytes(model, index_bytes));
+  }
 
+  ByteWriter body;
+  for (const auto& [tag, raw] : sections) put_section(body, tag, tag != kFaces, raw, options.zstd_level);
   ByteWriter out;
   out.bytes(kMagic, 4);
   out.u16(kFormatVersionMajor);
   out.u16(kFormatVersionMinor);
-  out.u32(kFileCompactSections);
+  out.u32(0);
   out.u32(uint32_t(sections.size()));
+  out.u64(kHeaderBytes + body.size());
   out.u32(crc32c(out.data().data(), kHeaderBytes - 4));
-  for (const auto& [tag, raw] : sections) {
-    put_section(out, tag, tag != kFaces, raw, options.zstd_level);
-  }
+  out.bytes(body.data().data(), body.size());
+  // The chunks follow the sections, each checked by its own CRC in the RESI index, so a
+  // reader can leave them in the file until a frame needs them.
+  if (model.residual.step > 0)
+    out.bytes(model.residual.payload.data() + index_bytes, model.residual.payload.size() - index_bytes);
   return std::move(out.data());
 }
 
@@ -315,6 +344,7 @@ bool peek_header(const uint8_t* data, size_t size, ContainerHeader* h) {
   h->version_minor = r.u16();
   h->flags = r.u32();
   h->section_count = r.u32();
+  h->head_bytes = r.u64();
   return r.ok;
 }
 
@@ -345,53 +375,58 @@ uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections) {
   return bytes;
 }
 
-bool read_container(const uint8_t* data, size_t size, Model* model, std::string* error,
-                    std::vector<SectionInfo>* infos) {
-  *model = Model{};
-  if (infos) infos->clear();
+bool read_container_header(const uint8_t* data, size_t size, uint64_t file_bytes, ContainerHeader* h,
+                           std::string* error) {
   ByteReader r(data, size);
   const uint8_t* magic = r.take(4);
   if (!magic || std::memcmp(magic, kMagic, 4) != 0) return fail(error, "not a .dcrv file (bad magic)");
-  uint16_t major = r.u16();
-  r.u16();  // minor: newer minors only add optional sections and hint flags
-  uint32_t file_flags = r.u32();
-  uint32_t count = r.u32();
-  uint32_t crc = r.u32();
+  h->version_major = r.u16();
+  h->version_minor = r.u16();  // newer minors only add optional sections and hint flags
+  h->flags = r.u32();
+  h->section_count = r.u32();
+  h->head_bytes = r.u64();
+  const uint32_t crc = r.u32();
   if (!r.ok) return fail(error, "truncated header (" + std::to_string(size) + " bytes)");
   if (crc != crc32c(data, kHeaderBytes - 4) && kVerifyChecksums) return fail(error, "header checksum mismatch");
-  if (major != kFormatVersionMajor) return fail(error, "unsupported format version " + std::to_string(major));
-  if (file_flags & kFileRequiredFlagsMask & ~kFileKnownRequiredFlags)
+  if (h->version_major != kFormatVersionMajor)
+    return fail(error, "unsupported format version " + std::to_string(h->version_major) + " (this decoder reads " +
+                           std::to_string(kFormatVersionMajor) + ".x)");
+  if (h->flags & kFileRequiredFlagsMask & ~kFileKnownRequiredFlags)
     return fail(error, "file requires features this decoder does not know");
-  const bool compact = file_flags & kFileCompactSections;
-  if (uint64_t(count) * (compact ? kCompactSectionHeaderMin : kSectionHeaderBytes) > r.remaining())
+  if (h->head_bytes < kHeaderBytes || h->head_bytes > file_bytes)
+    return fail(error, "header's section size points outside the file");
+  if (uint64_t(h->section_count) * kCompactSectionHeaderMin > h->head_bytes - kHeaderBytes)
     return fail(error, "section count exceeds file size");
+  return true;
+}
+
+bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, Model* model, std::string* error,
+                         std::vector<SectionInfo>* infos) {
+  *model = Model{};
+  if (infos) infos->clear();
+  ContainerHeader h;
+  if (!read_container_header(data, size, file_bytes, &h, error)) return false;
+  if (size < h.head_bytes) return fail(error, "file is truncated before its chunk data");
+  ByteReader r(data, size_t(h.head_bytes));
+  r.take(kHeaderBytes);
 
   constexpr int kKnown = 6;
   bool seen[kKnown] = {false, false, false, false, false, false};
   const uint32_t order[kKnown] = {kMeta, kFaces, kCurves, kSegments, kLowRank, kResidual};
   std::vector<uint8_t> raw;
-  for (uint32_t i = 0; i < count; ++i) {
+  for (uint32_t i = 0; i < h.section_count; ++i) {
     const size_t header_at = r.position();
-    uint32_t tag = r.u32();
-    uint16_t flags = 0;
-    uint64_t stored = 0, raw_size = 0;
-    if (compact) {
-      flags = r.u8();
-      stored = r.varint();
-      raw_size = flags & kSectionZstd ? r.varint() : stored;
-    } else {
-      flags = r.u16();
-      r.u16();  // reserved
-      stored = r.u64();
-      raw_size = r.u64();
-    }
+    const uint32_t tag = r.u32();
+    const uint16_t flags = r.u8();
+    const uint64_t stored = r.varint();
+    const uint64_t raw_size = flags & kSectionZstd ? r.varint() : stored;
     const size_t crc_at = r.position();
-    uint32_t section_crc = r.u32();
-    std::string name = tag_name(tag);
+    const uint32_t section_crc = r.u32();
+    const std::string name = tag_name(tag);
     if (!r.ok) return fail(error, "truncated section header");
     if (stored > r.remaining()) return fail(error, "section " + name + " is truncated");
     const uint8_t* p = r.take(size_t(stored));
-    uint32_t crc_head = crc32c(data + header_at, crc_at - header_at);
+    const uint32_t crc_head = crc32c(data + header_at, crc_at - header_at);
     if (crc32c(p, size_t(stored), crc_head) != section_crc && kVerifyChecksums)
       return fail(error, "section " + name + " checksum mismatch");
     if (flags & ~kSectionKnownFlags) return fail(error, "section " + name + " has unknown flags");
@@ -409,7 +444,7 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     for (int k = known + 1; k < kKnown; ++k)
       if (seen[k]) return fail(error, "section " + name + " out of order");
     seen[known] = true;
-    // A file without CURV has one-point curves (section 7), which SEGS counts its motions by.
+    // A file without CURV has one-point curves, which SEGS counts its motions by.
     if (known > 2 && !seen[2] && model->curves.offsets.empty())
       model->curves = singleton_curves(model->meta.vertex_count);
 
@@ -420,7 +455,6 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
       size_t n = ZSTD_decompress(raw.data(), raw.size(), p, size_t(stored));
       if (ZSTD_isError(n) || n != raw_size) return fail(error, "section " + name + " does not decompress");
     } else {
-      if (raw_size != stored) return fail(error, "section " + name + " size mismatch");
       raw.assign(p, p + stored);
     }
     ByteReader s(raw.data(), raw.size());
@@ -430,7 +464,7 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
       // Before anything sized by V or F is built (one-point curves of a file without CURV);
       // F = 0, rejected later, must not let any V through.
       if (ok && uint64_t(model->meta.vertex_count) * std::max(model->meta.frame_count, 1u) >
-                    decoder_value_budget(size) / 3)
+                    decoder_value_budget(size_t(std::min<uint64_t>(file_bytes, SIZE_MAX))) / 3)
         return fail(error, "vertex and frame counts are implausible for the file size");
     }
     else if (tag == kFaces) {
@@ -446,12 +480,37 @@ bool read_container(const uint8_t* data, size_t size, Model* model, std::string*
     else if (tag == kResidual) ok = parse_residual(s, model);
     if (!ok || s.remaining() != 0) return fail(error, "section " + name + " is malformed");
   }
-  if (r.remaining() != 0) return fail(error, "trailing bytes after the last section");
+  if (r.remaining() != 0) return fail(error, "the sections end before the header's chunk data offset");
   if (!seen[0]) return fail(error, "missing required section " + tag_name(order[0]));
   if (!seen[2] && model->curves.offsets.empty())
     model->curves = singleton_curves(model->meta.vertex_count);
   if (!seen[3]) model->segments.clear();
+  if (seen[5]) {
+    if (!check_chunk_index(model, file_bytes - h.head_bytes, error)) return false;
+  } else if (file_bytes != h.head_bytes) {
+    return fail(error, "trailing bytes after the last section");
+  }
   return validate_model(*model, error);
+}
+
+bool read_container(const uint8_t* data, size_t size, Model* model, std::string* error,
+                    std::vector<SectionInfo>* infos) {
+  if (!read_container_head(data, size, size, model, error, infos)) return false;
+  // The chunks follow the head: the payload holds them after its index, as the writer's.
+  // With the whole file at hand every chunk's checksum is verified now.
+  ResidualLayer& res = model->residual;
+  if (res.external_bytes > 0) {
+    const uint8_t* chunks = data + (size - res.external_bytes);
+    ResidualIndex index;
+    read_residual_index(res.payload.data(), res.payload.size(), model->meta.frame_count, !model->faces.empty(),
+                        res.external_bytes, &index, nullptr);
+    for (size_t c = 0; c < index.chunks.size(); ++c)
+      if (kVerifyChecksums && crc32c(chunks + index.chunks[c].offset, size_t(index.chunks[c].size)) != index.chunks[c].crc)
+        return fail(error, "chunk " + std::to_string(c) + " is corrupted (checksum mismatch)");
+    res.payload.insert(res.payload.end(), chunks, chunks + res.external_bytes);
+    res.external_bytes = 0;
+  }
+  return true;
 }
 
 }  // namespace dcurve

@@ -11,8 +11,8 @@ namespace dcurve {
 
 // Version written by write_container. Readers accept any minor of their major: a newer minor
 // only adds optional sections and hint flags.
-constexpr uint16_t kFormatVersionMajor = 2;
-constexpr uint16_t kFormatVersionMinor = 5;
+constexpr uint16_t kFormatVersionMajor = 3;
+constexpr uint16_t kFormatVersionMinor = 0;
 
 // Values (floats or grid values) a decoder may build for a file of `file_bytes` bytes:
 // max(2^23, 8192 * file_bytes), the bound that keeps a small hostile file from asking for
@@ -47,14 +47,14 @@ struct SectionInfo {
   int face_layout = -1;       // FACE only: 0 exact, 1 traversal, 2 compact (codec/faces.h)
 };
 
-// The fixed 20-byte file header.
+// The fixed 28-byte file header.
 struct ContainerHeader {
   uint16_t version_major = 0, version_minor = 0;
   uint32_t flags = 0;
   uint32_t section_count = 0;
+  uint64_t head_bytes = 0;  // header and sections: where the chunk data begins
 };
-constexpr size_t kContainerHeaderBytes = 20;
-constexpr size_t kSectionHeaderBytes = 28;  // the wide (2.0) layout; compact ones are smaller
+constexpr size_t kContainerHeaderBytes = 28;
 
 // Reads the header fields without checking anything else; false when size < 20 or the
 // magic is wrong. For tools that describe a file that read_container already accepted.
@@ -92,7 +92,22 @@ size_t motion_record_size(const CurveMotion& m);
 
 // Parses and validates a whole file. On failure returns false and a message naming the
 // problem; never reads outside [data, data + size) and bounds every allocation by `size`.
+// model->residual.payload receives the chunk index and the chunks.
 bool read_container(const uint8_t* data, size_t size, Model* model, std::string* error,
                     std::vector<SectionInfo>* sections = nullptr);
+
+// The file header alone (kContainerHeaderBytes of `data`), checked: magic, CRC, version,
+// flags, and head_bytes within [kContainerHeaderBytes, file_bytes]. What a reader that
+// loads chunks on demand reads first, to learn how much more it needs before any chunk.
+bool read_container_header(const uint8_t* data, size_t size, uint64_t file_bytes, ContainerHeader* header,
+                           std::string* error);
+
+// Parses and validates the head of a file of file_bytes bytes (head: its first
+// header.head_bytes bytes, as read_container_header gave them): everything but the chunk
+// data, which it checks only by size against the chunk index. model->residual.payload
+// receives the index alone and residual.external_bytes the chunk data's size, which
+// starts at file offset head_bytes.
+bool read_container_head(const uint8_t* head, size_t head_size, uint64_t file_bytes, Model* model,
+                         std::string* error, std::vector<SectionInfo>* sections = nullptr);
 
 }  // namespace dcurve

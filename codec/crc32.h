@@ -4,5 +4,11 @@
 #include <cstdint>
 
 namespace dcurve {
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+constexpr bool kVerifyChecksums = false;  // lets a fuzzer's mutations reach the parsers
+#else
+constexpr bool kVerifyChecksums = true;
+#endif
+
 uint32_t crc32c(const void* data, size_t size, uint32_t seed = 0);
 }

@@ -73,7 +73,15 @@ struct Segment {
 struct ResidualLayer {
   double step = 0.0;                 // grid spacing, model units, > 0
   double origin[3] = {0.0, 0.0, 0.0};
-  std::vector<uint8_t> payload;      // the coded residual stream (format owned by codec/residual.h)
+  // The coded residuals (format owned by codec/residual.h): header and chunk index, then
+  // the chunks. A reader that leaves the chunks in the file holds the index alone here and
+  // the chunks' byte count in external_bytes.
+  std::vector<uint8_t> payload;
+  uint64_t external_bytes = 0;
+  // Frames per chunk (format_spec/residual.md): what the encoder plans and codes with, what
+  // a reader found in the index. 0 while unset: one chunk of every frame.
+  uint32_t chunk_frames = 0;
+  uint64_t coded_bytes() const { return payload.size() + external_bytes; }
 };
 
 // A low-rank model of the residual grid (LRNK section, format_spec/dcrv.md section 17): the

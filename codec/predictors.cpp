@@ -315,7 +315,7 @@ bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<ui
     case PredictorKind::Reference: return ok(c.r0);
     case PredictorKind::Linear:
       return ok(c.r0) && ok(c.r1) && c.r0 != c.r1 && near(c.r0, f) && near(c.r1, c.r0);
-    case PredictorKind::Model: return options.model_prediction != nullptr;
+    case PredictorKind::Model: return options.model_prediction != nullptr || options.model_frames != nullptr;
     case PredictorKind::Motion: return ok(c.r0);
   }
   return false;

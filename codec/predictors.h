@@ -95,11 +95,21 @@ Traversal build_traversal(const Model& model);
 
 class SpatialWeightsSource;
 
+// The Model predictor computed one frame at a time (a decoder that keeps no table of every
+// frame): writes frame f's V * 3 values (walk-local frame id, grid units) into out.
+class ModelFrameSource {
+ public:
+  virtual ~ModelFrameSource() = default;
+  virtual void frame(uint32_t f, int32_t* out) const = 0;
+};
+
 // Extra inputs to the residual layer that are not in the payload.
 struct ResidualOptions {
   // Model predictor values, frame-major ((f * V + v) * 3 + axis), grid units; null when
   // the file has no motion model. Must be bit-identical on encoder and decoder.
   const std::vector<int32_t>* model_prediction = nullptr;
+  // Alternative to model_prediction (used when that is null): the same values on demand.
+  const ModelFrameSource* model_frames = nullptr;
   // build_traversal(model) of the model the call codes, when the caller reuses one across
   // calls (it depends only on V and the faces or curves); null: each call builds its own.
   const Traversal* traversal = nullptr;

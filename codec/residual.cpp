@@ -8,11 +8,12 @@
 #include "codec/error.h"
 #include "codec/int_coder.h"
 #include "codec/range_coder.h"
+#include "codec/record_coder.h"
 
 namespace dcurve {
 namespace {
 
-constexpr uint8_t kFormatVersion = 2;
+constexpr uint8_t kFormatVersion = 3;
 // A plan entry byte: predictor kind in bits 0-3, spatial mode in bits 4-6.
 constexpr int kSpatialShift = 4;
 
@@ -55,6 +56,16 @@ int index_bits(uint32_t others) {
   return b;
 }
 
+// Frame f's Model predictor values: read in place from options.model_prediction, else
+// computed into the workspace; null when the walk has none.
+const int32_t* model_values(const ResidualOptions& options, uint32_t f, size_t stride, ResidualWorkspace& ws) {
+  if (options.model_prediction) return options.model_prediction->data() + size_t(f) * stride;
+  if (!options.model_frames) return nullptr;
+  ws.model_frame.resize(stride);
+  options.model_frames->frame(f, ws.model_frame.data());
+  return ws.model_frame.data();
+}
+
 // Walks the frames in decoding order, calling coder.residual(ctx, sign_ctx, &r) for every
 // residual r, coder.index(K, previous, &j) at every cluster of a frame with K > 1
 // candidates and coder.row(previous, &row) for every Motion axis of the cluster. When
@@ -62,13 +73,13 @@ int index_bits(uint32_t others) {
 // walker computes r from q and the coder codes or records it. One body for all uses so
 // they cannot drift apart.
 template <bool kDecode, class Coder>
-bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan, const ResidualOptions& options,
-                 int32_t* q, Coder& coder) {
-  const uint32_t V = model.meta.vertex_count;
+bool walk_frames(uint32_t V, const Traversal& trav, PredictorPlan& plan, const ResidualOptions& options,
+                 int32_t* q, Coder& coder, ResidualWorkspace& ws) {
   const uint32_t S = plan.cluster_size, clusters = cluster_count(V, S);
   const size_t stride = size_t(V) * 3;
-  std::vector<int64_t> base;
-  std::vector<int8_t> res(stride * plan.order.size(), 0);
+  std::vector<int64_t>& base = ws.base;
+  std::vector<int8_t>& res = ws.residuals;
+  res.assign(stride * plan.order.size(), 0);
   const int8_t* previous = nullptr;  // residuals of the frame coded last
   SpatialWeightsCache geometry(options.weights_source);
   if constexpr (kDecode) plan.stream_bytes.assign(plan.order.size(), 0);
@@ -78,6 +89,7 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
     FramePredictors& fp = plan.frames[f];
     const uint32_t K = uint32_t(fp.candidates.size());
     base.resize(size_t(K) * stride);
+    const int32_t* model_frame = model_values(options, f, stride, ws);
     for (uint32_t j = 0; j < K; ++j)
       for (int a = 0; a < 3; ++a)
         if (fp.candidates[j][size_t(a)].kind == PredictorKind::Linear)  // the others are read in place
@@ -124,7 +136,7 @@ bool walk_frames(const Model& model, const Traversal& trav, PredictorPlan& plan,
       }
       for (int a = 0; a < 3; ++a) have_map[slot] |= choice[a].kind == PredictorKind::Motion;
       const int64_t* bj = &base[size_t(j) * stride];
-      const int32_t* model_f = options.model_prediction ? options.model_prediction->data() + size_t(f) * stride : nullptr;
+      const int32_t* model_f = model_frame;
       auto base_of = [&](uint32_t u, int a) -> int64_t {
         switch (choice[a].kind) {
           case PredictorKind::None: return 0;
@@ -256,14 +268,14 @@ struct ResidualRecorder {
   bool row(int, const MotionRow&, MotionRow*) { return true; }
 };
 
-// CRC-32C of the values as little-endian int32, so a corrupted stream that still decodes
-// to in-range values is caught.
-uint32_t values_checksum(const std::vector<int32_t>& q) {
+// CRC-32C of the values as little-endian int32: a stream that still decodes to in-range
+// values against another prediction (a damaged model) is caught.
+uint32_t values_checksum(const int32_t* q, size_t count) {
   uint32_t crc = 0;
   uint8_t chunk[4096];
-  for (size_t i = 0; i < q.size();) {
+  for (size_t i = 0; i < count;) {
     size_t n = 0;
-    for (; n + 4 <= sizeof chunk && i < q.size(); ++i, n += 4) {
+    for (; n + 4 <= sizeof chunk && i < count; ++i, n += 4) {
       const uint32_t u = uint32_t(q[i]);
       for (int b = 0; b < 4; ++b) chunk[n + size_t(b)] = uint8_t(u >> (8 * b));
     }
@@ -336,75 +348,91 @@ bool plan_is_valid(const PredictorPlan& plan, uint32_t F, uint32_t V, const Resi
 namespace {
 // Reference frames are written relative to the frame they serve: small numbers.
 void write_ref(ByteWriter& w, uint32_t f, uint32_t r) { w.varint(zigzag_encode(int64_t(r) - int64_t(f))); }
-uint32_t read_ref(ByteReader& r, uint32_t f) {
+uint32_t read_ref(RecordReader& r, uint32_t f) {
   int64_t v = 0;
   if (!add_zigzag_delta(int64_t(f), r.varint(), &v)) return UINT32_MAX;
   return v < 0 || v > int64_t(UINT32_MAX) ? UINT32_MAX : uint32_t(v);
 }
 }  // namespace
 
-std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
-                                      const PredictorPlan* plan, const ResidualOptions& options) {
-  const uint32_t F = model.meta.frame_count;
-  PredictorPlan p = plan ? *plan : default_predictor_plan(F);
-  if (!plan_is_valid(p, F, model.meta.vertex_count, options)) return {};
-  if (q.size() != size_t(model.meta.vertex_count) * 3 * F ||
-      (options.model_prediction && options.model_prediction->size() != q.size()))
-    return {};
-  Traversal owned;
-  const Traversal& trav = traversal_for(model, options, &owned);
-  ByteWriter w;
-  w.u8(kFormatVersion);
-  w.u8(trav.from_faces ? 1 : 0);
-  w.u32(values_checksum(q));
-  w.varint(p.cluster_size);
-  w.varint(p.motion_block);
-  uint32_t expect = 0;  // time order costs one byte per frame: delta to the expected frame
-  for (uint32_t f : p.order) {
-    write_ref(w, expect, f);
-    expect = f + 1;
-    w.u8(uint8_t(p.frames[f].candidates.size()));
-    for (const auto& candidate : p.frames[f].candidates)
-      for (const PredictorChoice& c : candidate) {
-        w.u8(uint8_t(uint8_t(c.kind) | uint8_t(c.spatial) << kSpatialShift));
-        if (has_reference(c.kind)) write_ref(w, f, c.r0);
-        if (c.kind == PredictorKind::Linear) write_ref(w, f, c.r1);
-        if (uses_geometry(c.spatial)) write_ref(w, f, c.g);
-      }
+ResidualPlan single_chunk_plan(const PredictorPlan& plan) {
+  ResidualPlan r;
+  r.chunk_frames = uint32_t(std::max<size_t>(plan.order.size(), 1));
+  r.chunks.push_back(plan);
+  return r;
+}
+
+std::vector<CodedFrame> coded_frames(const ResidualPlan& plan) {
+  std::vector<CodedFrame> out;
+  for (size_t c = 0; c < plan.chunks.size(); ++c) {
+    const PredictorPlan& chunk = plan.chunks[c];
+    const uint32_t first = uint32_t(c) * plan.chunk_frames;
+    for (uint32_t f : chunk.order) out.push_back({first + f, &chunk, &chunk.frames[f]});
   }
+  return out;
+}
+
+namespace {
+// The predictor table as records (format_spec/residual.md, "Chunk"): cluster size and
+// motion block, then one record per frame in coding order.
+void write_plan_table(const PredictorPlan& plan, RecordWriter& out) {
+  ByteWriter w;
+  w.varint(plan.cluster_size);
+  w.varint(plan.motion_block);
+  out.record(w.data());
+  uint32_t expect = 0;  // time order costs one byte per frame: delta to the expected frame
+  for (uint32_t f : plan.order) {
+    ByteWriter r;
+    write_ref(r, expect, f);
+    expect = f + 1;
+    r.u8(uint8_t(plan.frames[f].candidates.size()));
+    for (const auto& candidate : plan.frames[f].candidates)
+      for (const PredictorChoice& c : candidate) {
+        r.u8(uint8_t(uint8_t(c.kind) | uint8_t(c.spatial) << kSpatialShift));
+        if (has_reference(c.kind)) write_ref(r, f, c.r0);
+        if (c.kind == PredictorKind::Linear) write_ref(r, f, c.r1);
+        if (uses_geometry(c.spatial)) write_ref(r, f, c.g);
+      }
+    out.record(r.data());
+  }
+}
+}  // namespace
+
+std::vector<uint8_t> encode_residual_chunk(uint32_t V, const Traversal& trav, const int32_t* q, uint32_t frames,
+                                           const PredictorPlan& plan, const ResidualOptions& options) {
+  if (!plan_is_valid(plan, frames, V, options)) return {};
   StreamWriter coder;
-  std::vector<int32_t> work(q);  // the walker takes a mutable pointer, shared with decoding
-  walk_frames<false>(model, trav, p, options, work.data(), coder);
+  RecordWriter table(coder.enc);
+  write_plan_table(plan, table);
+  ResidualWorkspace ws;
+  PredictorPlan p = plan;
+  std::vector<int32_t> work(q, q + size_t(frames) * V * 3);  // the walker takes a mutable pointer
+  walk_frames<false>(V, trav, p, options, work.data(), coder, ws);
   const std::vector<uint8_t>& stream = coder.enc.finish();
-  w.varint(stream.size());
+  ByteWriter w;
+  w.u32(values_checksum(q, size_t(frames) * V * 3));
   w.bytes(stream.data(), stream.size());
   return std::move(w.data());
 }
 
 namespace {
-// Reads the payload's header and predictor table, leaving `r` at the stream length.
-bool read_header(const Model& model, const ResidualOptions& options, ByteReader& r, PredictorPlan* plan,
-                 uint32_t* checksum, std::string* error) {
-  const uint32_t F = model.meta.frame_count;
-  const uint8_t version = r.u8();
-  const uint8_t from_faces = r.u8();
-  *checksum = r.u32();
+// Reads a chunk's predictor table into `plan` from the start of its stream.
+bool read_plan_table(RecordReader& r, uint32_t frames, const ResidualOptions& options, PredictorPlan* plan,
+                     std::string* error) {
   const uint64_t cluster_size = r.varint(), motion_block = r.varint();
-  if (!r.ok) return fail(error, "residual stream is truncated");
-  if (version != kFormatVersion) return fail(error, "residual stream version " + std::to_string(version) + " is not supported");
-  if (from_faces != (model.faces.empty() ? 0 : 1))
-    return fail(error, "residual stream was coded with a different neighbour structure (faces present or not)");
+  r.end_record();
+  if (!r.ok) return fail(error, "residual chunk is truncated");
   if (cluster_size == 0 || cluster_size > UINT32_MAX || motion_block == 0 || motion_block > UINT32_MAX)
     return fail(error, "residual cluster size or motion block is out of range");
   plan->cluster_size = uint32_t(cluster_size);
   plan->motion_block = uint32_t(motion_block);
   plan->order.clear();
-  plan->frames.assign(F, FramePredictors());
-  std::vector<uint8_t> decoded(F, 0);
+  plan->frames.assign(frames, FramePredictors());
+  std::vector<uint8_t> decoded(frames, 0);
   uint32_t expect = 0;
-  for (uint32_t k = 0; k < F; ++k) {
+  for (uint32_t k = 0; k < frames; ++k) {
     const uint32_t f = read_ref(r, expect);
-    if (!r.ok || f >= F || decoded[f]) return fail(error, "residual frame order is not a permutation of the frames");
+    if (!r.ok || f >= frames || decoded[f]) return fail(error, "residual frame order is not a permutation of the frames");
     plan->order.push_back(f);
     expect = f + 1;
     const uint8_t count = r.u8();
@@ -424,72 +452,223 @@ bool read_header(const Model& model, const ResidualOptions& options, ByteReader&
         if (!r.ok || !predictor_usable(c, f, decoded, options))
           return fail(error, c.kind == PredictorKind::Model && r.ok
                                  ? "residual stream needs the motion model prediction, which was not supplied"
-                                 : "residual predictor table refers to an unavailable frame");
+                                 : "residual predictor table refers to an unavailable frame (not decoded before "
+                                   "it in its chunk)");
       }
     if (!geometry_frames_within_bound(plan->frames[f]))
       return fail(error, "residual frame names more than " + std::to_string(kMaxGeometryFrames) + " geometry frames");
     decoded[f] = 1;
+    r.end_record();
   }
-  return true;
-}
-
-// Decodes the whole payload into q, filling plan (with its per-cluster choices).
-bool decode_all(const Model& model, std::vector<int32_t>* q, PredictorPlan* plan, std::string* error,
-                const ResidualOptions& options) {
-  const size_t total = size_t(model.meta.vertex_count) * 3 * model.meta.frame_count;
-  if (options.model_prediction && options.model_prediction->size() != total)
-    return fail(error, "model prediction has the wrong number of values");
-  ByteReader r(model.residual.payload.data(), model.residual.payload.size());
-  uint32_t checksum;
-  if (!read_header(model, options, r, plan, &checksum, error)) return false;
-  const uint64_t stream_size = r.varint();
-  if (!r.ok || stream_size != r.remaining()) return fail(error, "residual stream length does not match the payload");
-  const uint8_t* stream = r.take(size_t(stream_size));
-  Traversal owned;
-  const Traversal& trav = traversal_for(model, options, &owned);
-  q->assign(total, 0);
-  StreamReader coder(stream, size_t(stream_size));
-  const bool ok = walk_frames<true>(model, trav, *plan, options, q->data(), coder);
-  if (!ok || !coder.dec.at_clean_end())
-    return fail(error, "residual stream is truncated, corrupted or decodes out of range");
-  if (values_checksum(*q) != checksum) return fail(error, "residual stream is corrupted (checksum mismatch)");
   return true;
 }
 }  // namespace
 
-bool decode_predictor_plan(const Model& model, PredictorPlan* plan, std::string* error,
-                           const ResidualOptions& options, bool with_clusters) {
+bool decode_residual_chunk(uint32_t V, const Traversal& trav, const uint8_t* bytes, size_t size, uint32_t frames,
+                           int32_t* q, const ResidualOptions& options, ResidualWorkspace* ws, std::string* error) {
+  ByteReader r(bytes, size);
+  const uint32_t checksum = r.u32();
+  if (!r.ok) return fail(error, "residual chunk is truncated");
+  const size_t stream_size = r.remaining();
+  StreamReader coder(r.take(stream_size), stream_size);
+  RecordReader table(coder.dec);
+  if (!read_plan_table(table, frames, options, &ws->plan, error)) return false;
+  const bool ok = walk_frames<true>(V, trav, ws->plan, options, q, coder, *ws);
+  if (!ok || !coder.dec.at_clean_end())
+    return fail(error, "residual stream is truncated, corrupted or decodes out of range");
+  if (kVerifyChecksums && values_checksum(q, size_t(frames) * V * 3) != checksum)
+    return fail(error, "residual chunk decodes to other values than were coded (checksum mismatch)");
+  return true;
+}
+
+bool read_residual_index(const uint8_t* payload, size_t size, uint32_t F, bool has_faces, uint64_t data_limit,
+                         ResidualIndex* index, std::string* error) {
+  ByteReader r(payload, size);
+  const uint8_t version = r.u8();
+  const uint8_t from_faces = r.u8();
+  const uint64_t chunk_frames = r.varint(), count = r.varint();
+  if (!r.ok) return fail(error, "residual payload is truncated");
+  if (version != kFormatVersion) return fail(error, "residual payload version " + std::to_string(version) + " is not supported");
+  if (from_faces > 1 || from_faces != (has_faces ? 1 : 0))
+    return fail(error, "residual payload was coded with a different neighbour structure (faces present or not)");
+  if (chunk_frames == 0 || chunk_frames > F) return fail(error, "residual chunk length is out of range");
+  if (count != chunk_count(F, uint32_t(chunk_frames)))
+    return fail(error, "residual chunk index disagrees with the frame count");
+  if (count * 6 > r.remaining()) return fail(error, "residual chunk index is truncated");
+  index->from_faces = from_faces != 0;
+  index->chunk_frames = uint32_t(chunk_frames);
+  index->chunks.assign(size_t(count), ChunkEntry());
+  uint64_t end = 0;
+  for (ChunkEntry& e : index->chunks) {
+    e.offset = r.varint();
+    e.size = r.varint();
+    e.crc = r.u32();
+    if (!r.ok) return fail(error, "residual chunk index is truncated");
+    if (e.offset != end) return fail(error, "residual chunk index has a gap or an overlap between chunks");
+    if (e.size == 0 || e.size > data_limit - end) return fail(error, "residual chunk index points outside the data");
+    end += e.size;
+  }
+  index->index_bytes = r.position();
+  index->data_bytes = end;
+  return true;
+}
+
+namespace {
+// The options of one chunk's walk: a whole-animation Model prediction cut to the chunk's
+// frames (into *storage).
+ResidualOptions options_for_chunk(const ResidualOptions& options, ChunkSpan span, size_t stride,
+                                  std::vector<int32_t>* storage) {
+  ResidualOptions out = options;
+  if (options.model_prediction) {
+    const auto from = options.model_prediction->begin() + ptrdiff_t(stride * span.first);
+    storage->assign(from, from + ptrdiff_t(stride * span.count));
+    out.model_prediction = storage;
+  }
+  return out;
+}
+}  // namespace
+
+std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q, const ResidualPlan& plan,
+                                      const ResidualOptions& options) {
+  const uint32_t F = model.meta.frame_count, V = model.meta.vertex_count, K = plan.chunk_frames;
+  const size_t stride = size_t(V) * 3;
+  if (K == 0 || plan.chunks.size() != chunk_count(F, K) || q.size() != stride * F ||
+      (options.model_prediction && options.model_prediction->size() != q.size()))
+    return {};
+  Traversal owned;
+  const Traversal& trav = traversal_for(model, options, &owned);
+  ByteWriter data;
+  std::vector<ChunkEntry> entries;
+  for (uint32_t c = 0; c < plan.chunks.size(); ++c) {
+    const ChunkSpan span = chunk_span(F, K, c);
+    std::vector<int32_t> prediction;
+    const ResidualOptions chunk_options = options_for_chunk(options, span, stride, &prediction);
+    const std::vector<uint8_t> bytes =
+        encode_residual_chunk(V, trav, q.data() + stride * span.first, span.count, plan.chunks[c], chunk_options);
+    if (bytes.empty()) return {};
+    entries.push_back({data.size(), bytes.size(), crc32c(bytes.data(), bytes.size())});
+    data.bytes(bytes.data(), bytes.size());
+  }
+  ByteWriter w;
+  w.u8(kFormatVersion);
+  w.u8(trav.from_faces ? 1 : 0);
+  w.varint(K);
+  w.varint(entries.size());
+  for (const ChunkEntry& e : entries) {
+    w.varint(e.offset);
+    w.varint(e.size);
+    w.u32(e.crc);
+  }
+  w.bytes(data.data().data(), data.size());
+  return std::move(w.data());
+}
+
+std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q, const PredictorPlan* plan,
+                                      const ResidualOptions& options) {
+  return encode_residuals(model, q, single_chunk_plan(plan ? *plan : default_predictor_plan(model.meta.frame_count)),
+                          options);
+}
+
+namespace {
+// Decodes every chunk of the payload into q, filling plan (with its per-cluster choices).
+bool decode_all(const Model& model, std::vector<int32_t>* q, ResidualPlan* plan, std::string* error,
+                const ResidualOptions& options) {
+  const uint32_t F = model.meta.frame_count, V = model.meta.vertex_count;
+  const size_t stride = size_t(V) * 3, total = stride * F;
+  if (options.model_prediction && options.model_prediction->size() != total)
+    return fail(error, "model prediction has the wrong number of values");
+  const std::vector<uint8_t>& payload = model.residual.payload;
+  ResidualIndex index;
+  if (!read_residual_index(payload.data(), payload.size(), F, !model.faces.empty(), UINT64_MAX, &index, error))
+    return false;
+  if (index.data_bytes != payload.size() - index.index_bytes)
+    return fail(error, "residual chunk index does not match the payload's chunk data");
+  Traversal owned;
+  const Traversal& trav = traversal_for(model, options, &owned);
+  q->assign(total, 0);
+  plan->chunk_frames = index.chunk_frames;
+  plan->chunks.assign(index.chunks.size(), PredictorPlan());
+  ResidualWorkspace ws;
+  for (uint32_t c = 0; c < index.chunks.size(); ++c) {
+    const ChunkEntry& e = index.chunks[c];
+    const uint8_t* bytes = payload.data() + index.index_bytes + e.offset;
+    if (crc32c(bytes, size_t(e.size)) != e.crc && kVerifyChecksums)
+      return fail(error, "residual chunk " + std::to_string(c) + " is corrupted (checksum mismatch)");
+    const ChunkSpan span = chunk_span(F, index.chunk_frames, c);
+    std::vector<int32_t> prediction;
+    const ResidualOptions chunk_options = options_for_chunk(options, span, stride, &prediction);
+    std::string why;
+    if (!decode_residual_chunk(V, trav, bytes, size_t(e.size), span.count, q->data() + stride * span.first,
+                               chunk_options, &ws, &why))
+      return fail(error, "residual chunk " + std::to_string(c) + ": " + why);
+    plan->chunks[c] = ws.plan;
+  }
+  return true;
+}
+}  // namespace
+
+bool decode_predictor_plan(const Model& model, ResidualPlan* plan, std::string* error, const ResidualOptions& options,
+                           bool with_clusters) {
   if (with_clusters) {
     std::vector<int32_t> q;
     return decode_all(model, &q, plan, error, options);
   }
-  ByteReader r(model.residual.payload.data(), model.residual.payload.size());
-  uint32_t checksum;
-  return read_header(model, options, r, plan, &checksum, error);
+  const uint32_t F = model.meta.frame_count;
+  const std::vector<uint8_t>& payload = model.residual.payload;
+  ResidualIndex index;
+  if (!read_residual_index(payload.data(), payload.size(), F, !model.faces.empty(), UINT64_MAX, &index, error))
+    return false;
+  if (index.data_bytes != payload.size() - index.index_bytes)
+    return fail(error, "residual chunk index does not match the payload's chunk data");
+  plan->chunk_frames = index.chunk_frames;
+  plan->chunks.assign(index.chunks.size(), PredictorPlan());
+  for (uint32_t c = 0; c < index.chunks.size(); ++c) {
+    const ChunkEntry& e = index.chunks[c];
+    if (e.size < 4) return fail(error, "residual chunk is truncated");
+    RangeDecoder dec(payload.data() + index.index_bytes + e.offset + 4, size_t(e.size) - 4);  // past the checksum
+    RecordReader table(dec);
+    if (!read_plan_table(table, chunk_span(F, index.chunk_frames, c).count, options, &plan->chunks[c], error))
+      return false;
+  }
+  return true;
 }
 
-bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
-                      const ResidualOptions& options, PredictorPlan* plan) {
-  PredictorPlan own;
+bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error, const ResidualOptions& options,
+                      ResidualPlan* plan) {
+  ResidualPlan own;
   return decode_all(model, q, plan ? plan : &own, error, options);
 }
 
-std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
+std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const ResidualPlan& plan,
                                      const ResidualOptions& options) {
+  const uint32_t F = model.meta.frame_count, V = model.meta.vertex_count;
+  const size_t stride = size_t(V) * 3;
   // A plan read without its clusters has no motion maps: nothing to walk with.
-  const uint32_t blocks = motion_block_count(model.meta.vertex_count, plan);
-  for (const FramePredictors& fp : plan.frames)
-    for (const auto& candidate : fp.candidates)
-      for (const PredictorChoice& c : candidate)
-        if (c.kind == PredictorKind::Motion && fp.transforms.size() != size_t(blocks) * fp.candidates.size())
-          return {};
+  const uint32_t K = plan.chunk_frames;
+  if (K == 0 || plan.chunks.size() != chunk_count(F, K)) return {};
+  for (const PredictorPlan& chunk : plan.chunks) {
+    const uint32_t blocks = motion_block_count(V, chunk);
+    for (const FramePredictors& fp : chunk.frames)
+      for (const auto& candidate : fp.candidates)
+        for (const PredictorChoice& c : candidate)
+          if (c.kind == PredictorKind::Motion && fp.transforms.size() != size_t(blocks) * fp.candidates.size())
+            return {};
+  }
   std::vector<int64_t> out;
   out.reserve(q.size());
-  std::vector<int32_t> work(q);
-  PredictorPlan p = plan;
-  ResidualRecorder recorder{&out};
   Traversal owned;
-  walk_frames<false>(model, traversal_for(model, options, &owned), p, options, work.data(), recorder);
+  const Traversal& trav = traversal_for(model, options, &owned);
+  ResidualWorkspace ws;
+  for (uint32_t c = 0; c < plan.chunks.size(); ++c) {
+    const ChunkSpan span = chunk_span(F, K, c);
+    std::vector<int32_t> work(q.begin() + ptrdiff_t(stride * span.first),
+                              q.begin() + ptrdiff_t(stride * (span.first + span.count)));
+    std::vector<int32_t> prediction;
+    const ResidualOptions chunk_options = options_for_chunk(options, span, stride, &prediction);
+    PredictorPlan p = plan.chunks[c];
+    ResidualRecorder recorder{&out};
+    walk_frames<false>(V, trav, p, chunk_options, work.data(), recorder, ws);
+  }
   return out;
 }
 

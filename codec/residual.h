@@ -5,6 +5,7 @@
 //
 // Grid positions are laid out frame-major: q[(f * V + v) * 3 + axis].
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -73,26 +74,109 @@ PredictorPlan default_predictor_plan(uint32_t frame_count);
 bool plan_is_valid(const PredictorPlan& plan, uint32_t frame_count, uint32_t vertex_count,
                    const ResidualOptions& options);
 
+// The frames of a residual layer are coded in chunks of K consecutive frames (the last may
+// be shorter). A chunk's predictors reach only frames of the same chunk and data every chunk
+// can reach (the Model predictor), so a decoder decodes any chunk alone. Chunk c codes
+// frames [c K, min(F, (c + 1) K)); inside it, frame ids are local (0 = its first frame).
+struct ResidualPlan {
+  uint32_t chunk_frames = 0;           // K >= 1
+  std::vector<PredictorPlan> chunks;   // one per chunk, chunk-local frame ids
+};
+constexpr uint32_t kMaxChunks = 1u << 24;
+
+inline uint32_t chunk_count(uint32_t frame_count, uint32_t chunk_frames) {
+  return chunk_frames == 0 ? 0 : uint32_t((uint64_t(frame_count) + chunk_frames - 1) / chunk_frames);
+}
+// Frames of chunk c: [first, first + count).
+struct ChunkSpan {
+  uint32_t first = 0, count = 0;
+};
+inline ChunkSpan chunk_span(uint32_t frame_count, uint32_t chunk_frames, uint32_t c) {
+  const uint64_t first = uint64_t(c) * chunk_frames;
+  const uint64_t end = std::min<uint64_t>(frame_count, first + chunk_frames);
+  return {uint32_t(first), end > first ? uint32_t(end - first) : 0u};
+}
+
+// A plan of one chunk holding every frame: what a file without chunking would code.
+ResidualPlan single_chunk_plan(const PredictorPlan& plan);
+
+// One frame of a ResidualPlan in coding order (chunk after chunk), by its whole-animation
+// id: for reports and rate estimates that look at frames, not chunks.
+struct CodedFrame {
+  uint32_t frame = 0;
+  const PredictorPlan* chunk = nullptr;
+  const FramePredictors* predictors = nullptr;
+};
+std::vector<CodedFrame> coded_frames(const ResidualPlan& plan);
+
+// Where each chunk's bytes lie in the chunk data that follows the payload's index
+// (format_spec/residual.md): offsets from the start of that data.
+struct ChunkEntry {
+  uint64_t offset = 0, size = 0;
+  uint32_t crc = 0;  // CRC-32C of the chunk's bytes
+};
+struct ResidualIndex {
+  bool from_faces = false;
+  uint32_t chunk_frames = 0;
+  std::vector<ChunkEntry> chunks;
+  size_t index_bytes = 0;   // bytes of the payload before the chunk data
+  uint64_t data_bytes = 0;  // bytes of chunk data the index describes (the last chunk's end)
+};
+
+// Parses the header and chunk index at the start of a residual payload of a file with
+// `frame_count` frames and (has_faces) a FACE section. Rejects an index whose chunk count
+// disagrees with the frame count, whose chunks do not follow each other without gap or
+// overlap, or that claims more data than `data_limit` bytes.
+bool read_residual_index(const uint8_t* payload, size_t size, uint32_t frame_count, bool has_faces,
+                         uint64_t data_limit, ResidualIndex* index, std::string* error);
+
+// Reused buffers of chunk decoding: after the first chunk, decoding allocates nothing more
+// for chunks no larger than it (bar the spatial weight tables of Geometric and Fit frames).
+struct ResidualWorkspace {
+  std::vector<int8_t> residuals;
+  std::vector<int64_t> base;
+  std::vector<int32_t> model_frame;
+  PredictorPlan plan;
+  size_t bytes() const {
+    return residuals.capacity() + base.capacity() * sizeof(int64_t) + model_frame.capacity() * sizeof(int32_t);
+  }
+};
+
+// Codes `frames` frames of grid values q (frame-major, V vertices, the chunk's first frame
+// first) with `plan` (chunk-local ids, plan_is_valid) into one chunk's bytes; empty for an
+// invalid plan. options.model_prediction, when set, holds the chunk's frames only.
+std::vector<uint8_t> encode_residual_chunk(uint32_t V, const Traversal& trav, const int32_t* q, uint32_t frames,
+                                           const PredictorPlan& plan, const ResidualOptions& options);
+
+// Decodes one chunk's bytes into q (frames * V * 3 values). plan (may be null) receives the
+// chunk's plan with its per-cluster choices. False with a message on malformed bytes; never
+// reads outside [bytes, bytes + size).
+bool decode_residual_chunk(uint32_t V, const Traversal& trav, const uint8_t* bytes, size_t size, uint32_t frames,
+                           int32_t* q, const ResidualOptions& options, ResidualWorkspace* workspace,
+                           std::string* error);
+
 // Codes the grid positions `q` (frame_count * vertex_count * 3 values, each an int32) of
-// `model` into a payload for model.residual.payload. `model` supplies counts, faces (the
-// neighbour structure; leave them empty when the file will not store them) and curves.
-// `plan` (plan_is_valid) picks the order and predictors; null means default_predictor_plan.
-// An invalid plan or mismatched sizes are a caller bug: returns an empty vector.
-std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
-                                      const PredictorPlan* plan = nullptr,
+// `model` into a payload for model.residual.payload: header, chunk index, chunks. `model`
+// supplies counts, faces (the neighbour structure; leave them empty when the file will not
+// store them) and curves. Every chunk plan must be plan_is_valid for its frames. An invalid
+// plan or mismatched sizes are a caller bug: returns an empty vector.
+std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q, const ResidualPlan& plan,
                                       const ResidualOptions& options = {});
+// One chunk of every frame with `plan`; null means default_predictor_plan.
+std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
+                                      const PredictorPlan* plan = nullptr, const ResidualOptions& options = {});
 
 // Reverses encode_residuals. `q` receives frame_count * vertex_count * 3 values. Returns
-// false with a message on a malformed or corrupted payload (a checksum of the decoded
-// values is verified); never reads outside the payload. `plan`, when not null, receives the
-// complete plan the payload was coded with (per-cluster choices and motion maps included).
+// false with a message on a malformed or corrupted payload (every chunk's CRC is verified);
+// never reads outside the payload. `plan`, when not null, receives the complete plan the
+// payload was coded with (per-cluster choices and motion maps included).
 bool decode_residuals(const Model& model, std::vector<int32_t>* q, std::string* error,
-                      const ResidualOptions& options = {}, PredictorPlan* plan = nullptr);
+                      const ResidualOptions& options = {}, ResidualPlan* plan = nullptr);
 
-// Reads the predictor table of model.residual.payload (for reports and tools). The
+// Reads the predictor tables of model.residual.payload (for reports and tools). The
 // per-cluster choices and motion maps live in the coded stream: with `with_clusters` the
 // whole payload is decoded to fill them, else they are left empty.
-bool decode_predictor_plan(const Model& model, PredictorPlan* plan, std::string* error,
+bool decode_predictor_plan(const Model& model, ResidualPlan* plan, std::string* error,
                            const ResidualOptions& options = {}, bool with_clusters = false);
 
 // Grid value -> model units, exactly as the decoder converts it (float32 output).
@@ -104,7 +188,11 @@ inline float grid_to_model(const ResidualLayer& layer, int axis, int64_t value) 
 // traversal position, axis): for measuring the entropy coder against general-purpose compressors.
 // `plan` must be complete (from the encoder, or decode_predictor_plan with with_clusters);
 // empty when it uses Motion without its maps.
-std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
+std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q, const ResidualPlan& plan,
                                      const ResidualOptions& options = {});
+inline std::vector<int64_t> residual_values(const Model& model, const std::vector<int32_t>& q,
+                                            const PredictorPlan& plan, const ResidualOptions& options = {}) {
+  return residual_values(model, q, single_chunk_plan(plan), options);
+}
 
 }  // namespace dcurve

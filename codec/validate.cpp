@@ -24,7 +24,7 @@ bool validate_model(const Model& m, std::string* error) {
   const bool has_residual = m.residual.step != 0.0 || !m.residual.payload.empty();
   if (has_residual) {
     uint64_t values = uint64_t(V) * F * 3;
-    uint64_t budget = std::max<uint64_t>(kMaxValuesFloor, kMaxValuesPerPayloadByte * m.residual.payload.size());
+    uint64_t budget = std::max<uint64_t>(kMaxValuesFloor, kMaxValuesPerPayloadByte * m.residual.coded_bytes());
     if (values > budget) return fail(error, "vertex and frame counts are implausible for the residual size");
   } else if (m.segments.empty()) {
     return fail(error, "file has neither a residual layer nor time segments: nothing to evaluate");

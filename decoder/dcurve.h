@@ -1,22 +1,51 @@
 /* dcurve runtime decoder, C ABI. Thin wrapper over dcurve.hpp for engines and other languages.
- * Every function that can fail returns 0 on success and a non-zero code otherwise; the
- * message is copied into `error` (always NUL-terminated when error_size > 0). A NULL decoder
- * is accepted everywhere: counts read 0, evaluation writes nothing. */
+ *
+ * Every function that can fail returns DCURVE_OK (0) on success and one of the
+ * DCURVE_ERROR_* codes otherwise; the message is copied into `error` (always
+ * NUL-terminated when error_size > 0; `error` may be NULL). No C++ exception crosses this
+ * interface. A NULL decoder or cursor is accepted everywhere: counts read 0, evaluation
+ * writes nothing and returns DCURVE_ERROR_INVALID_ARGUMENT.
+ *
+ * Threads: a decoder is immutable once opened and may be shared by threads; a cursor
+ * belongs to one thread at a time. dcurve_evaluate* on the decoder itself lock an internal
+ * cursor (safe from any thread, one call at a time); give each playing thread a cursor.
+ * Memory: the decoder keeps the compressed chunks (open_memory) or reads them from the
+ * file on demand (open_file); each cursor holds two decoded chunks. */
 #ifndef DCURVE_H
 #define DCURVE_H
 #include <stddef.h>
 #include <stdint.h>
+
+#define DCURVE_VERSION_MAJOR 0
+#define DCURVE_VERSION_MINOR 3
+#define DCURVE_VERSION_PATCH 0
+#define DCURVE_VERSION ((DCURVE_VERSION_MAJOR << 16) | (DCURVE_VERSION_MINOR << 8) | DCURVE_VERSION_PATCH)
+/* The .dcrv format major version this library reads and writes. */
+#define DCURVE_FORMAT_VERSION_MAJOR 3
+
+#define DCURVE_OK 0
+#define DCURVE_ERROR_MALFORMED 1        /* not a valid .dcrv, or a format version not read here */
+#define DCURVE_ERROR_INVALID_ARGUMENT 2 /* NULL output pointer, NULL decoder or cursor */
+#define DCURVE_ERROR_IO 3               /* the file cannot be opened or read */
+#define DCURVE_ERROR_CORRUPT_CHUNK 4    /* a chunk fails its checksum or does not decode */
+#define DCURVE_ERROR_OUT_OF_MEMORY 5
+#define DCURVE_ERROR_INTERNAL 6
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 typedef struct dcurve_decoder dcurve_decoder;
+typedef struct dcurve_cursor dcurve_cursor;
 
-/* Opens a .dcrv held in memory; the caller may free `data` afterwards. Returns 1 with a
- * message on malformed input (*out = NULL), 2 when `out` is NULL. */
+/* DCURVE_VERSION of the linked library (compare with the header's macro). */
+uint32_t dcurve_version(void);
+/* A static name for a status code ("ok", "malformed", ...); "unknown" for others. */
+const char* dcurve_status_name(int status);
+
+/* Opens a .dcrv held in memory; the caller may free `data` afterwards. */
 int dcurve_open_memory(const void* data, size_t size, dcurve_decoder** out, char* error, size_t error_size);
-/* Opens a .dcrv file by path. */
+/* Opens a .dcrv file by path; chunks are read from the file when needed. */
 int dcurve_open_file(const char* path, dcurve_decoder** out, char* error, size_t error_size);
 void dcurve_close(dcurve_decoder* decoder);
 
@@ -25,13 +54,30 @@ uint32_t dcurve_frame_count(const dcurve_decoder* decoder);
 uint32_t dcurve_face_count(const dcurve_decoder* decoder);
 /* 3 * face_count vertex ids, or NULL when the file omits connectivity. Owned by the decoder. */
 const uint32_t* dcurve_faces(const dcurve_decoder* decoder);
+double dcurve_frame_rate(const dcurve_decoder* decoder);    /* frames per second; 0 unknown */
+double dcurve_tolerance(const dcurve_decoder* decoder);     /* max error, fraction of L */
+double dcurve_rest_diagonal(const dcurve_decoder* decoder); /* L, model units */
+uint32_t dcurve_chunk_frames(const dcurve_decoder* decoder);
+/* Bytes the decoder holds now (shared tables, kept chunks, its internal cursor). */
+size_t dcurve_memory_bytes(const dcurve_decoder* decoder);
 
-/* Writes vertex_count * 3 floats for t in [0, 1] (clamped). No allocation; thread-safe. */
-void dcurve_evaluate(const dcurve_decoder* decoder, double t, float* xyz_out);
+/* Writes vertex_count * 3 floats for t in [0, 1] (clamped; NaN reads as 0). */
+int dcurve_evaluate(const dcurve_decoder* decoder, double t, float* xyz_out);
 /* Exact reconstruction of input frame f (clamped to [0, frame_count)). */
-void dcurve_evaluate_frame(const dcurve_decoder* decoder, uint32_t frame, float* xyz_out);
+int dcurve_evaluate_frame(const dcurve_decoder* decoder, uint32_t frame, float* xyz_out);
+/* The same with the failure's message (a chunk that fails its checksum, a file truncated
+ * after opening). */
+int dcurve_evaluate_ex(const dcurve_decoder* decoder, double t, float* xyz_out, char* error, size_t error_size);
 /* Unit vertex normals of `xyz`; returns non-zero when the file has no connectivity. */
 int dcurve_compute_normals(const dcurve_decoder* decoder, const float* xyz, float* normals_out);
+
+/* A playback cursor for one thread; must be destroyed before its decoder is closed. */
+int dcurve_cursor_create(const dcurve_decoder* decoder, dcurve_cursor** out);
+void dcurve_cursor_destroy(dcurve_cursor* cursor);
+int dcurve_cursor_evaluate(dcurve_cursor* cursor, double t, float* xyz_out, char* error, size_t error_size);
+int dcurve_cursor_evaluate_frame(dcurve_cursor* cursor, uint32_t frame, float* xyz_out, char* error,
+                                 size_t error_size);
+size_t dcurve_cursor_memory_bytes(const dcurve_cursor* cursor);
 
 #ifdef __cplusplus
 }

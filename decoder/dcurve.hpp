@@ -1,39 +1,84 @@
 // dcurve runtime decoder, C++ API. Open a .dcrv once, then evaluate the mesh at any t.
 // Depends on the C++17 standard library and zstd only.
+//
+// Memory: an open Decoder holds the file's shared sections (faces, curves, models), the
+// chunk index and either the compressed chunks (open_memory) or nothing of them
+// (open_file: chunks are read from the file when a frame needs them). Decoded frames live
+// in a Cursor's window of two chunks, so memory does not grow with the clip's length.
+//
+// Thread safety: a Decoder is immutable after opening; any number of threads may share
+// it. A Cursor belongs to one thread at a time (make one per thread). The Decoder's own
+// evaluate calls use an internal cursor behind a mutex: safe from many threads, one at a
+// time.
 #pragma once
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
 
+#include "dcurve.h"
+
 namespace dcurve {
+
+// Why a call failed (the C ABI's DCURVE_ERROR_* codes).
+enum class Status : int {
+  Ok = DCURVE_OK,
+  Malformed = DCURVE_ERROR_MALFORMED,           // not a valid .dcrv, or a version this build does not read
+  InvalidArgument = DCURVE_ERROR_INVALID_ARGUMENT,
+  Io = DCURVE_ERROR_IO,                         // the file cannot be opened or read
+  CorruptChunk = DCURVE_ERROR_CORRUPT_CHUNK,    // a chunk fails its checksum or does not decode
+  OutOfMemory = DCURVE_ERROR_OUT_OF_MEMORY,
+  Internal = DCURVE_ERROR_INTERNAL,
+};
+
+// The outcome of a call: Ok, or a status and a message naming the problem.
+struct Error {
+  Status status = Status::Ok;
+  std::string message;
+};
+
+class Cursor;
 
 class Decoder {
  public:
-  // Opens a file held in memory (the bytes are copied as needed; the caller may free them
-  // after the call). Returns nullptr and sets *error on any malformed or truncated input.
-  static std::unique_ptr<Decoder> open_memory(const void* data, size_t size, std::string* error);
-  // Reads and opens a file. Errors name the path.
-  static std::unique_ptr<Decoder> open_file(const std::string& path, std::string* error);
+  // Opens a file held in memory; the compressed chunks are copied, so the caller may free
+  // `data` after the call. Returns nullptr and sets *error on malformed or truncated input.
+  static std::unique_ptr<Decoder> open_memory(const void* data, size_t size, std::string* error,
+                                              Status* status = nullptr);
+  // Opens a file by path: reads everything but the chunks, which are read (and checked)
+  // when a frame needs them; a file truncated or rewritten after opening is detected then.
+  // Errors name the path.
+  static std::unique_ptr<Decoder> open_file(const std::string& path, std::string* error, Status* status = nullptr);
   ~Decoder();
 
   uint32_t vertex_count() const;
   uint32_t frame_count() const;          // input frames; frame f sits at t = f / (frame_count - 1)
   uint32_t face_count() const;           // 0 when the file omits connectivity
   const uint32_t* faces() const;         // 3 * face_count vertex ids, or nullptr
-  double frame_rate() const;             // frames per second of the input
+  double frame_rate() const;             // frames per second of the input (0: unknown)
   double tolerance() const;              // promised max error, fraction of the rest-pose diagonal
   double rest_diagonal() const;          // L, model units
+  uint32_t chunk_frames() const;         // frames per chunk (0 when the file has no residual layer)
+  uint32_t chunk_count() const;
 
   // Writes vertex_count * 3 floats (x, y, z per vertex, input vertex order) for time t in
-  // [0, 1] (clamped). At t = f / (frame_count - 1) the result is input frame f within the
-  // tolerance. No allocation; safe to call from several threads at once.
-  void evaluate(double t, float* xyz_out) const;
-  // Same for input frame f in [0, frame_count) (clamped): exact reconstruction of that frame.
-  void evaluate_frame(uint32_t f, float* xyz_out) const;
+  // [0, 1] (clamped; NaN reads as 0). At t = f / (frame_count - 1) the result is input frame
+  // f within the tolerance. Decodes the chunks it needs into the internal cursor. False
+  // (output unspecified) when a chunk cannot be read or decoded; the decoder stays usable.
+  bool evaluate(double t, float* xyz_out, Error* error = nullptr) const;
+  // Same for input frame f in [0, frame_count) (clamped).
+  bool evaluate_frame(uint32_t f, float* xyz_out, Error* error = nullptr) const;
   // Area-weighted unit vertex normals of positions `xyz` (vertex_count * 3 floats) into
   // `normals_out` (same size). Needs connectivity; returns false when the file has none.
   bool compute_normals(const float* xyz, float* normals_out) const;
+
+  // A cursor of its own for one thread (sequential playback decodes each chunk once).
+  // The cursor refers to this decoder, which must outlive it.
+  std::unique_ptr<Cursor> make_cursor() const;
+
+  // Bytes this decoder holds now: shared tables, the compressed chunks it keeps and its
+  // internal cursor's window (not the cursors made by make_cursor).
+  size_t memory_bytes() const;
 
   struct Impl;
 
@@ -41,5 +86,26 @@ class Decoder {
   explicit Decoder(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
+
+// A window of decoded chunks and the buffers decoding needs: evaluates frames of one
+// Decoder. Not thread-safe: one cursor per thread.
+class Cursor {
+ public:
+  ~Cursor();
+  bool evaluate(double t, float* xyz_out, Error* error = nullptr);
+  bool evaluate_frame(uint32_t f, float* xyz_out, Error* error = nullptr);
+  // Bytes the cursor holds: its window of decoded chunks and decoding buffers.
+  size_t memory_bytes() const;
+
+  struct State;
+
+ private:
+  friend class Decoder;
+  explicit Cursor(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
+// The library's version, DCURVE_VERSION as a number.
+uint32_t version();
 
 }  // namespace dcurve

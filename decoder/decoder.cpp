@@ -1,83 +1,188 @@
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
+#include <cstdio>
+#include <new>
 #include <vector>
 
 #include "codec/container.h"
+#include "codec/error.h"
 #include "codec/residual.h"
+#include "decoder_state.h"
 #include "dcurve.hpp"
-#include "frame_evaluator.h"
-#include "model_prediction.h"
 
 namespace dcurve {
 
 struct Decoder::Impl {
-  Model model;
-  FrameEvaluator evaluator;  // points into `model`: both live and die together
+  SharedState shared;
+  // The window behind Decoder::evaluate: one call at a time.
+  mutable std::mutex mutex;
+  mutable std::unique_ptr<ChunkWindow> window;
 };
+
+struct Cursor::State {
+  explicit State(const SharedState& shared) : window(shared) {}
+  ChunkWindow window;
+};
+
+namespace {
+
+bool open_failed(std::string* error, Status* status, Status code, const std::string& message) {
+  if (error) *error = message;
+  if (status) *status = code;
+  return false;
+}
+
+// Builds what every cursor shares once the file's head is parsed into shared->model
+// (residual.payload holding the chunk index): the index, the traversal and the model tables.
+bool prepare(SharedState* shared, uint64_t file_bytes, std::string* error) {
+  const Model& m = shared->model;
+  const uint64_t budget = decoder_value_budget(size_t(std::min<uint64_t>(file_bytes, SIZE_MAX)));
+  if (m.residual.step > 0) {
+    const std::vector<uint8_t>& p = m.residual.payload;
+    if (!read_residual_index(p.data(), p.size(), m.meta.frame_count, !m.faces.empty(), m.residual.external_bytes,
+                             &shared->index, error))
+      return false;
+    // Two decoded chunks per cursor: bounded like every other table by the file size.
+    if (uint64_t(shared->index.chunk_frames) * m.meta.vertex_count * 3 * 2 > budget)
+      return fail(error, "chunks are implausibly large for the file size");
+    shared->traversal = build_traversal(m);
+  }
+  return shared->predictor.build(m, budget, error);
+}
+
+}  // namespace
 
 Decoder::Decoder(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Decoder::~Decoder() = default;
 
-std::unique_ptr<Decoder> Decoder::open_memory(const void* data, size_t size, std::string* error) {
-  auto impl = std::make_unique<Impl>();
+std::unique_ptr<Decoder> Decoder::open_memory(const void* data, size_t size, std::string* error, Status* status) {
+  if (status) *status = Status::Ok;
   if (!data && size) {
-    if (error) *error = "null data";
+    open_failed(error, status, Status::InvalidArgument, "null data");
     return nullptr;
   }
-  if (!read_container(static_cast<const uint8_t*>(data), size, &impl->model, error)) return nullptr;
-  std::vector<int32_t> q;
-  const Model& m = impl->model;
-  // read_container checked V * F * 3 against the same budget (zstd can expand a section
-  // 4096-fold, so the residual's own bound alone would not do).
-  const uint64_t budget = decoder_value_budget(size);
-  if (m.residual.step > 0) {
-    // Files with a motion model may predict frames from it: its grid values come first.
-    std::vector<int32_t> prediction;
-    ResidualOptions options;
-    if (has_model_prediction(m)) {
-      if (!model_grid_prediction(m, budget, &prediction, error)) return nullptr;
-      options.model_prediction = &prediction;
+  try {
+    auto impl = std::make_unique<Impl>();
+    const uint8_t* bytes = static_cast<const uint8_t*>(data);
+    std::string why;
+    if (!read_container_head(bytes, size, size, &impl->shared.model, &why) ||
+        !prepare(&impl->shared, size, &why)) {
+      open_failed(error, status, Status::Malformed, why);
+      return nullptr;
     }
-    if (!decode_residuals(m, &q, error, options)) return nullptr;
-  }
-  if (!impl->evaluator.build(m, q, budget, error)) return nullptr;
-  return std::unique_ptr<Decoder>(new Decoder(std::move(impl)));
-}
-
-std::unique_ptr<Decoder> Decoder::open_file(const std::string& path, std::string* error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (error) *error = path + ": cannot open file";
+    const uint64_t chunk_bytes = impl->shared.model.residual.external_bytes;
+    impl->shared.chunks = memory_chunks(bytes + (size - chunk_bytes), size_t(chunk_bytes));
+    return std::unique_ptr<Decoder>(new Decoder(std::move(impl)));
+  } catch (const std::bad_alloc&) {
+    open_failed(error, status, Status::OutOfMemory, "out of memory");
     return nullptr;
   }
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::string err;
-  auto d = open_memory(bytes.data(), bytes.size(), &err);
-  if (!d && error) *error = path + ": " + err;
-  return d;
 }
 
-uint32_t Decoder::vertex_count() const { return impl_->model.meta.vertex_count; }
-uint32_t Decoder::frame_count() const { return impl_->model.meta.frame_count; }
-uint32_t Decoder::face_count() const { return uint32_t(impl_->model.faces.size() / 3); }
-const uint32_t* Decoder::faces() const { return impl_->model.faces.empty() ? nullptr : impl_->model.faces.data(); }
-double Decoder::frame_rate() const { return impl_->model.meta.frame_rate; }
-double Decoder::tolerance() const { return impl_->model.meta.tolerance; }
-double Decoder::rest_diagonal() const { return impl_->model.meta.diag; }
+namespace {
+struct FileCloser {
+  void operator()(std::FILE* f) const {
+    if (f) std::fclose(f);
+  }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
-void Decoder::evaluate_frame(uint32_t f, float* xyz) const {
-  impl_->evaluator.evaluate(double(std::min(f, frame_count() - 1)), xyz);
+bool read_at(std::FILE* f, uint64_t offset, size_t size, std::vector<uint8_t>* out) {
+  out->resize(size);
+  return std::fseek(f, long(offset), SEEK_SET) == 0 && std::fread(out->data(), 1, size, f) == size;
+}
+}  // namespace
+
+std::unique_ptr<Decoder> Decoder::open_file(const std::string& path, std::string* error, Status* status) {
+  if (status) *status = Status::Ok;
+  try {
+    FilePtr file(std::fopen(path.c_str(), "rb"));
+    if (!file || std::fseek(file.get(), 0, SEEK_END) != 0) {
+      open_failed(error, status, Status::Io, path + ": cannot open file");
+      return nullptr;
+    }
+    const long end = std::ftell(file.get());
+    if (end < 0) {
+      open_failed(error, status, Status::Io, path + ": cannot read file");
+      return nullptr;
+    }
+    const uint64_t file_bytes = uint64_t(end);
+    // The header says how much precedes the chunks: read that, leave the chunks in the file.
+    std::vector<uint8_t> head;
+    ContainerHeader header;
+    std::string why;
+    if (!read_at(file.get(), 0, size_t(std::min<uint64_t>(file_bytes, kContainerHeaderBytes)), &head) ||
+        !read_container_header(head.data(), head.size(), file_bytes, &header, &why) ||
+        !read_at(file.get(), 0, size_t(header.head_bytes), &head)) {
+      open_failed(error, status, why.empty() ? Status::Io : Status::Malformed,
+                  path + ": " + (why.empty() ? "cannot read file" : why));
+      return nullptr;
+    }
+    auto impl = std::make_unique<Impl>();
+    if (!read_container_head(head.data(), head.size(), file_bytes, &impl->shared.model, &why) ||
+        !prepare(&impl->shared, file_bytes, &why)) {
+      open_failed(error, status, Status::Malformed, path + ": " + why);
+      return nullptr;
+    }
+    impl->shared.chunks = file_chunks(file.release(), header.head_bytes, file_bytes - header.head_bytes, path);
+    return std::unique_ptr<Decoder>(new Decoder(std::move(impl)));
+  } catch (const std::bad_alloc&) {
+    open_failed(error, status, Status::OutOfMemory, path + ": out of memory");
+    return nullptr;
+  }
 }
 
-void Decoder::evaluate(double t, float* xyz) const {
-  // Clamping happens in frame coordinates; NaN maps to frame 0.
-  impl_->evaluator.evaluate(t * double(frame_count() - 1), xyz);
+uint32_t Decoder::vertex_count() const { return impl_->shared.model.meta.vertex_count; }
+uint32_t Decoder::frame_count() const { return impl_->shared.model.meta.frame_count; }
+uint32_t Decoder::face_count() const { return uint32_t(impl_->shared.model.faces.size() / 3); }
+const uint32_t* Decoder::faces() const {
+  const auto& faces = impl_->shared.model.faces;
+  return faces.empty() ? nullptr : faces.data();
+}
+double Decoder::frame_rate() const { return impl_->shared.model.meta.frame_rate; }
+double Decoder::tolerance() const { return impl_->shared.model.meta.tolerance; }
+double Decoder::rest_diagonal() const { return impl_->shared.model.meta.diag; }
+uint32_t Decoder::chunk_frames() const { return impl_->shared.index.chunk_frames; }
+uint32_t Decoder::chunk_count() const { return uint32_t(impl_->shared.index.chunks.size()); }
+
+namespace {
+// Frame coordinate of time t; clamping happens in frame coordinates (NaN maps to frame 0).
+double frame_coordinate(double t, uint32_t frame_count) { return t * double(frame_count - 1); }
+
+bool evaluate_guarded(ChunkWindow& window, double x, float* out, Error* error) {
+  try {
+    return window.evaluate(x, out, error);
+  } catch (const std::bad_alloc&) {
+    if (error) *error = {Status::OutOfMemory, "out of memory"};
+    return false;
+  }
+}
+}  // namespace
+
+bool Decoder::evaluate(double t, float* xyz, Error* error) const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  if (!impl_->window) impl_->window = std::make_unique<ChunkWindow>(impl_->shared);
+  return evaluate_guarded(*impl_->window, frame_coordinate(t, frame_count()), xyz, error);
+}
+
+bool Decoder::evaluate_frame(uint32_t f, float* xyz, Error* error) const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  if (!impl_->window) impl_->window = std::make_unique<ChunkWindow>(impl_->shared);
+  return evaluate_guarded(*impl_->window, double(std::min(f, frame_count() - 1)), xyz, error);
+}
+
+std::unique_ptr<Cursor> Decoder::make_cursor() const {
+  return std::unique_ptr<Cursor>(new Cursor(std::make_unique<Cursor::State>(impl_->shared)));
+}
+
+size_t Decoder::memory_bytes() const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  return sizeof(*this) + sizeof(Impl) + impl_->shared.memory_bytes() +
+         (impl_->window ? impl_->window->memory_bytes() : 0);
 }
 
 bool Decoder::compute_normals(const float* xyz, float* normals) const {
-  const auto& faces = impl_->model.faces;
+  const auto& faces = impl_->shared.model.faces;
   if (faces.empty()) return false;
   const size_t V = vertex_count();
   std::fill_n(normals, V * 3, 0.f);
@@ -99,5 +204,22 @@ bool Decoder::compute_normals(const float* xyz, float* normals) const {
   }
   return true;
 }
+
+Cursor::Cursor(std::unique_ptr<State> state) : state_(std::move(state)) {}
+Cursor::~Cursor() = default;
+
+bool Cursor::evaluate(double t, float* xyz, Error* error) {
+  const uint32_t F = state_->window.frame_count();
+  return evaluate_guarded(state_->window, frame_coordinate(t, F), xyz, error);
+}
+
+bool Cursor::evaluate_frame(uint32_t f, float* xyz, Error* error) {
+  const uint32_t F = state_->window.frame_count();
+  return evaluate_guarded(state_->window, double(std::min(f, F - 1)), xyz, error);
+}
+
+size_t Cursor::memory_bytes() const { return sizeof(*this) + sizeof(State) + state_->window.memory_bytes(); }
+
+uint32_t version() { return DCURVE_VERSION; }
 
 }  // namespace dcurve

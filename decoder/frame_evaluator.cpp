@@ -6,6 +6,7 @@
 
 #include "codec/basis.h"
 #include "codec/error.h"
+#include "codec/residual.h"
 
 namespace dcurve {
 namespace {
@@ -20,12 +21,10 @@ constexpr int kMaxTimeTerms = 4;
 constexpr int kMaxSpaceTerms = 8;
 }  // namespace
 
-bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64_t max_floats, std::string* error) {
+bool FrameEvaluator::build(const Model& m, uint64_t max_floats, std::string* error) {
   vertex_count_ = m.meta.vertex_count;
   frame_count_ = m.meta.frame_count;
   curves_ = &m.curves;
-  const size_t n = size_t(vertex_count_) * 3;
-  const bool has_residual = !q.empty();
 
   // A file without segments is one span with no model: plain interpolation of the frames.
   std::vector<Segment> implicit;
@@ -37,83 +36,72 @@ bool FrameEvaluator::build(const Model& m, const std::vector<int32_t>& q, uint64
   }
 
   // Count first, allocate after: the tables never exceed the caller's bound.
-  uint64_t correction_floats = 0, weight_floats = 0;
+  uint64_t weight_floats = 0;
   for (const Segment& s : *segments) {
-    if (has_residual) correction_floats += uint64_t(s.last_frame - s.first_frame + 1) * n;
     for (size_t k = 0; k < s.motion.size(); ++k) {
       const CurveMotion& cm = s.motion[k];
       if (cm.basis == Basis::Zero) continue;
       uint32_t c = uint32_t(k / 3);
       weight_floats += uint64_t(m.curves.offsets[c + 1] - m.curves.offsets[c]) * basis_time_count(cm.basis);
     }
-    if (correction_floats + weight_floats > max_floats)
-      return fail(error, "decoded tables would need " + std::to_string(correction_floats + weight_floats) +
+    if (weight_floats > max_floats)
+      return fail(error, "model tables would need " + std::to_string(weight_floats) +
                              "+ floats, implausible for the file size");
   }
 
   spans_.clear();
   motions_.clear();
-  corrections_.assign(size_t(correction_floats), 0.f);
   weights_.assign(size_t(weight_floats), 0.f);
   size_t weights_at = 0;
-  size_t corrections_at = 0;
   for (const Segment& s : *segments) {
     Span span;
     span.first = s.first_frame;
     span.last = s.last_frame;
     span.motions_begin = motions_.size();
-    for (uint32_t c = 0; c < s.motion.size() / 3; ++c) {
-      CurveModel cmod;
-      cmod.curve = c;
-      for (uint8_t a = 0; a < 3; ++a) {
-        const CurveMotion& cm = s.motion[size_t(c) * 3 + a];
-        if (cm.basis == Basis::Zero) continue;
-        const int tc = basis_time_count(cm.basis), sc = basis_space_count(cm.basis);
-        if (tc > kMaxTimeTerms || sc > kMaxSpaceTerms || cm.coeffs.size() != size_t(tc) * sc)
-          return fail(error, "motion basis term counts do not match the coefficients");
-        const uint8_t k = cmod.axes++;
-        cmod.axis[k] = a;
-        cmod.basis[k] = cm.basis;
-        cmod.basis_case[k] = cm.basis_case;
-        cmod.time_param[k] = cm.time_param;
-        cmod.time_count[k] = uint8_t(tc);
-        cmod.stride = uint8_t(cmod.stride + tc);
-      }
-      if (cmod.axes == 0) continue;
-      cmod.weights_at = weights_at;
-      const uint32_t begin = m.curves.offsets[c], end = m.curves.offsets[c + 1];
-      for (uint32_t j = begin; j < end; ++j)
-        for (uint8_t k = 0; k < cmod.axes; ++k) {
-          const CurveMotion& cm = s.motion[size_t(c) * 3 + cmod.axis[k]];
-          const int tc = cmod.time_count[k], sc = basis_space_count(cm.basis);
-          double space[kMaxSpaceTerms];
-          basis_space(cm.basis, cm.basis_case, cm.space_param, m.curves.u[j], space);
-          for (int it = 0; it < tc; ++it) {
-            double acc = 0;
-            for (int is = 0; is < sc; ++is) acc += double(cm.coeffs[size_t(it) * sc + is]) * space[is];
-            weights_[weights_at++] = to_float(acc);
-          }
-        }
-      motions_.push_back(cmod);
-    }
+    if (!build_span_motions(m, s, &weights_at, error)) return false;
     span.motions_end = motions_.size();
-    if (has_residual) {
-      span.corrections_at = corrections_at;
-      const uint32_t len = span.last - span.first;
-      for (uint32_t f = span.first; f <= span.last; ++f) {
-        float* d = corrections_.data() + corrections_at;
-        const int32_t* qf = q.data() + size_t(f) * n;
-        for (size_t i = 0; i < n; ++i) d[i] = to_float(m.residual.origin[i % 3] + m.residual.step * double(qf[i]));
-        apply_model(span, len ? double(f - span.first) / len : 0.0, -1.f, d);
-        corrections_at += n;
-      }
-    }
     spans_.push_back(span);
   }
   for (float w : weights_)
     if (!std::isfinite(w)) return fail(error, "motion model overflows at some vertex");
-  for (float d : corrections_)
-    if (!std::isfinite(d)) return fail(error, "motion model overflows at some frame");
+  return true;
+}
+
+bool FrameEvaluator::build_span_motions(const Model& m, const Segment& s, size_t* weights_at, std::string* error) {
+  for (uint32_t c = 0; c < s.motion.size() / 3; ++c) {
+    CurveModel cmod;
+    cmod.curve = c;
+    for (uint8_t a = 0; a < 3; ++a) {
+      const CurveMotion& cm = s.motion[size_t(c) * 3 + a];
+      if (cm.basis == Basis::Zero) continue;
+      const int tc = basis_time_count(cm.basis), sc = basis_space_count(cm.basis);
+      if (tc > kMaxTimeTerms || sc > kMaxSpaceTerms || cm.coeffs.size() != size_t(tc) * sc)
+        return fail(error, "motion basis term counts do not match the coefficients");
+      const uint8_t k = cmod.axes++;
+      cmod.axis[k] = a;
+      cmod.basis[k] = cm.basis;
+      cmod.basis_case[k] = cm.basis_case;
+      cmod.time_param[k] = cm.time_param;
+      cmod.time_count[k] = uint8_t(tc);
+      cmod.stride = uint8_t(cmod.stride + tc);
+    }
+    if (cmod.axes == 0) continue;
+    cmod.weights_at = *weights_at;
+    const uint32_t begin = m.curves.offsets[c], end = m.curves.offsets[c + 1];
+    for (uint32_t j = begin; j < end; ++j)
+      for (uint8_t k = 0; k < cmod.axes; ++k) {
+        const CurveMotion& cm = s.motion[size_t(c) * 3 + cmod.axis[k]];
+        const int tc = cmod.time_count[k], sc = basis_space_count(cm.basis);
+        double space[kMaxSpaceTerms];
+        basis_space(cm.basis, cm.basis_case, cm.space_param, m.curves.u[j], space);
+        for (int it = 0; it < tc; ++it) {
+          double acc = 0;
+          for (int is = 0; is < sc; ++is) acc += double(cm.coeffs[size_t(it) * sc + is]) * space[is];
+          weights_[(*weights_at)++] = to_float(acc);
+        }
+      }
+    motions_.push_back(cmod);
+  }
   return true;
 }
 
@@ -188,8 +176,12 @@ void FrameEvaluator::apply_model(const Span& span, double tau, float sign, float
   }
 }
 
-void FrameEvaluator::evaluate(double x, float* out) const {
-  const size_t n = size_t(vertex_count_) * 3;
+double FrameEvaluator::tau_of(const Span& span, double x) const {
+  const uint32_t len = span.last - span.first;
+  return len ? (x - span.first) / len : 0.0;
+}
+
+FrameEvaluator::Place FrameEvaluator::locate(double x) const {
   const double last_x = double(frame_count_ - 1);
   if (!(x > 0.0)) x = 0.0;  // also catches NaN
   if (x > last_x) x = last_x;
@@ -197,25 +189,47 @@ void FrameEvaluator::evaluate(double x, float* out) const {
   auto it = std::upper_bound(spans_.begin(), spans_.end(), x,
                              [](double v, const Span& s) { return v < double(s.first); });
   const Span& span = *(it - 1);
-  const uint32_t len = span.last - span.first;
-  uint32_t i = span.first;
-  float w = 0.f;
-  if (len > 0) {
-    i = std::min(uint32_t(x), span.last - 1);
-    w = float(x - double(i));
+  Place p;
+  p.span = size_t(it - 1 - spans_.begin());
+  p.i = span.first;
+  if (span.last > span.first) {
+    p.i = std::min(uint32_t(x), span.last - 1);
+    p.w = float(x - double(p.i));
   }
-  if (corrections_.empty()) {
-    std::fill_n(out, n, 0.f);
-  } else {
-    const float* a = corrections_.data() + span.corrections_at + size_t(i - span.first) * n;
-    if (w == 0.f) {
-      std::copy_n(a, n, out);
-    } else {
-      const float* b = a + n;
-      for (size_t k = 0; k < n; ++k) out[k] = a[k] + w * (b[k] - a[k]);
-    }
+  p.tau = tau_of(span, x);
+  return p;
+}
+
+void FrameEvaluator::model_at(const Place& place, float* out) const {
+  std::fill_n(out, size_t(vertex_count_) * 3, 0.f);
+  const Span& span = spans_[place.span];
+  if (span.motions_end > span.motions_begin) apply_model(span, place.tau, 1.f, out);
+}
+
+void FrameEvaluator::evaluate(const Place& place, const ResidualLayer& grid, const int32_t* frame, const int32_t* next,
+                              float* scratch, float* out) const {
+  const size_t V = vertex_count_;
+  const Span& span = spans_[place.span];
+  const bool blend = place.w != 0.f && next;
+  const bool model = span.motions_end > span.motions_begin;
+  // D(f) = X_f - M(f) in binary32: the corrections the model's output is added to.
+  auto corrections = [&](const int32_t* q, uint32_t f, float* d) {
+    for (size_t v = 0; v < V; ++v)
+      for (int a = 0; a < 3; ++a) d[v * 3 + size_t(a)] = grid_to_model(grid, a, q[v * 3 + size_t(a)]);
+    if (model) apply_model(span, tau_of(span, double(f)), -1.f, d);
+  };
+  if (!model && !blend) {
+    for (size_t v = 0; v < V; ++v)
+      for (int a = 0; a < 3; ++a) out[v * 3 + size_t(a)] = grid_to_model(grid, a, frame[v * 3 + size_t(a)]);
+    return;
   }
-  if (span.motions_end > span.motions_begin) apply_model(span, len ? (x - span.first) / len : 0.0, 1.f, out);
+  corrections(frame, place.i, out);
+  if (blend) {
+    corrections(next, place.i + 1, scratch);
+    const float w = place.w;
+    for (size_t k = 0; k < V * 3; ++k) out[k] = out[k] + w * (scratch[k] - out[k]);
+  }
+  if (model) apply_model(span, place.tau, 1.f, out);
 }
 
 }  // namespace dcurve

@@ -1,6 +1,6 @@
-// The decoder's evaluation engine (format_spec/dcrv.md, "Evaluation"): tables built once at
-// open, then each frame is a blend of two correction frames plus a few multiply-adds per
-// vertex for the motion model. Internal to the decoder library.
+// The decoder's evaluation engine (format_spec/dcrv.md, "Evaluation"): the motion model's
+// per-vertex weights, built once at open, and the blend of two decoded frames' corrections
+// plus a few multiply-adds per vertex for the model. Internal to the decoder library.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -13,17 +13,37 @@ namespace dcurve {
 
 class FrameEvaluator {
  public:
-  // Builds the tables for `model` (already validated) and its decoded grid positions `q`
-  // (frame-major, empty when the file has no residual layer). Fails with a message when the
+  // Where frame coordinate x falls: the segment used, the frames i and i + 1 blended with
+  // weight w on i + 1 (w = 0: frame i alone), and the segment's local time tau.
+  struct Place {
+    size_t span = 0;
+    uint32_t i = 0;
+    float w = 0.f;
+    double tau = 0.0;
+  };
+
+  // Builds the model tables of `model` (already validated). Fails with a message when the
   // tables would exceed `max_floats` (the caller derives it from the file size) or when the
   // file uses a motion basis this build cannot evaluate.
-  bool build(const Model& model, const std::vector<int32_t>& q, uint64_t max_floats, std::string* error);
+  bool build(const Model& model, uint64_t max_floats, std::string* error);
 
-  // Positions at frame coordinate x in [0, frame_count - 1] (x = t * (frame_count - 1)),
-  // vertex_count * 3 floats into `out`. No allocation; const, so safe from many threads.
-  void evaluate(double x, float* out) const;
+  // The place of x, clamped to [0, frame_count - 1] (NaN maps to 0).
+  Place locate(double x) const;
+  bool has_model() const { return !motions_.empty(); }
 
-  uint64_t table_floats() const { return corrections_.size() + weights_.size(); }
+  // The motion model alone at `place`: vertex_count * 3 floats into out.
+  void model_at(const Place& place, float* out) const;
+
+  // Positions at `place` from the grid values of frames i and i + 1 (next may be null when
+  // w = 0): the model plus the blended corrections. scratch: 3 * vertex_count floats when
+  // has_model(). No allocation; const, so safe from many threads.
+  void evaluate(const Place& place, const ResidualLayer& grid, const int32_t* frame, const int32_t* next,
+                float* scratch, float* out) const;
+
+  size_t memory_bytes() const {
+    return weights_.capacity() * sizeof(float) + motions_.capacity() * sizeof(CurveModel) +
+           spans_.capacity() * sizeof(Span);
+  }
 
  private:
   // One curve's motions (its non-Zero axes) in one segment, with per-vertex weights: the
@@ -43,14 +63,13 @@ class FrameEvaluator {
   };
   struct Span {
     uint32_t first = 0, last = 0;  // frames covered
-    size_t corrections_at = 0;     // into corrections_: (last - first + 1) frames of V * 3
     size_t motions_begin = 0, motions_end = 0;
   };
 
-  // out += sign * model(span, tau), tau in [0, 1]. The one place the model is evaluated:
-  // corrections are built with sign = -1 through the same float operations, so at an input
-  // frame the output is the grid position up to one rounding.
+  bool build_span_motions(const Model& m, const Segment& s, size_t* weights_at, std::string* error);
+  // out += sign * model(span, tau), tau in [0, 1]. The one place the model is evaluated.
   void apply_model(const Span& span, double tau, float sign, float* out) const;
+  double tau_of(const Span& span, double x) const;
 
   uint32_t vertex_count_ = 0;
   uint32_t frame_count_ = 0;
@@ -58,7 +77,6 @@ class FrameEvaluator {
   std::vector<Span> spans_;
   std::vector<CurveModel> motions_;
   std::vector<float> weights_;
-  std::vector<float> corrections_;
 };
 
 }  // namespace dcurve

@@ -6,54 +6,28 @@
 #include "codec/error.h"
 #include "codec/low_rank.h"
 #include "codec/residual.h"
-#include "frame_evaluator.h"
 
 namespace dcurve {
 namespace {
 
-bool pde_grid_prediction(const Model& model, uint64_t max_floats, std::vector<int32_t>* out, std::string* error) {
-  FrameEvaluator model_only;
-  if (!model_only.build(model, {}, max_floats, error)) return false;
-  const size_t n = size_t(model.meta.vertex_count) * 3;
-  const ResidualLayer& grid = model.residual;
-  out->resize(n * model.meta.frame_count);
-  std::vector<float> xyz(n);
-  // Far outside any sane grid; keeps the residual arithmetic inside int64 on hostile files.
-  constexpr double kLimit = double(1 << 30);
-  for (uint32_t f = 0; f < model.meta.frame_count; ++f) {
-    model_only.evaluate(double(f), xyz.data());
-    int32_t* qf = out->data() + f * n;
-    for (size_t i = 0; i < n; ++i) {
-      double g = std::nearbyint((double(xyz[i]) - grid.origin[i % 3]) / grid.step);
-      qf[i] = int32_t(std::clamp(std::isfinite(g) ? g : 0.0, -kLimit, kLimit));
-    }
-  }
-  return true;
-}
-
-bool low_rank_grid_prediction(const Model& model, uint64_t max_values, std::vector<int32_t>* out,
-                              std::string* error) {
+// The mean and basis vectors are K + 1 pseudo-frames of the same mesh, coded by the
+// residual coder (its spatial predictors suit smooth basis shapes).
+bool decode_low_rank_basis(const Model& model, uint64_t max_values, std::vector<int32_t>* out, std::string* error) {
   const LowRankModel& lr = model.low_rank;
   const size_t n = size_t(model.meta.vertex_count) * 3;
-  if ((uint64_t(lr.components) + 1 + model.meta.frame_count) * n > max_values)
+  if ((uint64_t(lr.components) + 1) * n > max_values)
     return fail(error, "low-rank model is implausibly large for the file size");
-  // The mean and basis vectors are K + 1 pseudo-frames of the same mesh, coded by the
-  // residual coder (its spatial predictors suit smooth basis shapes).
   Model pseudo;
   pseudo.meta = model.meta;
   pseudo.meta.frame_count = lr.components + 1;
   pseudo.faces = model.faces;
   pseudo.curves = model.curves;
   pseudo.residual.payload = lr.basis_payload;
-  std::vector<int32_t> mean_and_basis;
   std::string why;
-  if (!decode_residuals(pseudo, &mean_and_basis, &why)) return fail(error, "low-rank basis: " + why);
-  for (size_t i = n; i < mean_and_basis.size(); ++i)
-    if (mean_and_basis[i] < -kMaxLowRankBasis || mean_and_basis[i] > kMaxLowRankBasis)
+  if (!decode_residuals(pseudo, out, &why)) return fail(error, "low-rank basis: " + why);
+  for (size_t i = n; i < out->size(); ++i)
+    if ((*out)[i] < -kMaxLowRankBasis || (*out)[i] > kMaxLowRankBasis)
       return fail(error, "low-rank basis value out of range");
-  out->resize(n * model.meta.frame_count);
-  for (uint32_t f = 0; f < model.meta.frame_count; ++f)
-    low_rank_frame(lr, f, mean_and_basis.data(), n, out->data() + f * n);
   return true;
 }
 
@@ -68,9 +42,40 @@ bool has_motion_model(const Model& model) {
 
 bool has_model_prediction(const Model& model) { return model.low_rank.components > 0 || has_motion_model(model); }
 
-bool model_grid_prediction(const Model& model, uint64_t max_floats, std::vector<int32_t>* out, std::string* error) {
-  if (model.low_rank.components > 0) return low_rank_grid_prediction(model, max_floats, out, error);
-  return pde_grid_prediction(model, max_floats, out, error);
+bool GridPredictor::build(const Model& model, uint64_t max_values, std::string* error) {
+  model_ = &model;
+  active_ = has_model_prediction(model);
+  if (!evaluator_.build(model, max_values, error)) return false;
+  return model.low_rank.components == 0 || decode_low_rank_basis(model, max_values, &mean_and_basis_, error);
+}
+
+void GridPredictor::frame(uint32_t f, int32_t* out, float* scratch) const {
+  const Model& m = *model_;
+  const size_t n = size_t(m.meta.vertex_count) * 3;
+  if (m.low_rank.components > 0) {
+    low_rank_frame(m.low_rank, f, mean_and_basis_.data(), n, out);
+    return;
+  }
+  evaluator_.model_at(evaluator_.locate(double(f)), scratch);
+  // Far outside any sane grid; keeps the residual arithmetic inside int64 on hostile files.
+  constexpr double kLimit = double(1 << 30);
+  const ResidualLayer& grid = m.residual;
+  for (size_t i = 0; i < n; ++i) {
+    const double g = std::nearbyint((double(scratch[i]) - grid.origin[i % 3]) / grid.step);
+    out[i] = int32_t(std::clamp(std::isfinite(g) ? g : 0.0, -kLimit, kLimit));
+  }
+}
+
+bool model_grid_prediction(const Model& model, uint64_t max_values, std::vector<int32_t>* out, std::string* error) {
+  GridPredictor predictor;
+  if (!predictor.build(model, max_values, error)) return false;
+  const size_t n = size_t(model.meta.vertex_count) * 3;
+  if (uint64_t(model.meta.frame_count) * n > max_values)
+    return fail(error, "model prediction is implausibly large for the file size");
+  out->resize(n * model.meta.frame_count);
+  std::vector<float> scratch(n);
+  for (uint32_t f = 0; f < model.meta.frame_count; ++f) predictor.frame(f, out->data() + f * n, scratch.data());
+  return true;
 }
 
 }  // namespace dcurve

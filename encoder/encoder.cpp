@@ -26,6 +26,8 @@
 namespace dcurve {
 namespace {
 
+constexpr uint32_t kDefaultChunkFrames = 16;
+
 // The input's face order or the face coder's traversal order, whichever gives the smaller
 // FACE section (each with its best layout): traversal wins on irregular meshes (Compact
 // codes it 2-4x smaller than the input order), a regular grid's own order can beat it.
@@ -98,8 +100,8 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   ResidualOptions ro;
   ro.weights_source = start.weights;
   ro.traversal = start.traversal.get();
-  const PredictorPlan plan = choose_plan_and_grid(*m, anim.frames, start.snap, &q, ro, po);
-  m->residual.payload = encode_residuals(*m, q, &plan, ro);
+  const ResidualPlan plan = choose_chunked_plan(*m, anim.frames, start.snap, &q, ro, po);
+  m->residual.payload = encode_residuals(*m, q, plan, ro);
   if (m->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
   if (residual_only) *residual_only = *m;
   WriteOptions wo;
@@ -140,11 +142,13 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
     out->traversal = std::make_shared<const Traversal>(std::move(trav));
   }
   out->snap = snap_distance(anim, opt.tolerance * L);
+  const uint32_t chunk_frames = opt.chunk_frames > 0 ? opt.chunk_frames : kDefaultChunkFrames;
   // The grid is chosen by whole plain encodes, which see the faces, curves and low-rank
   // model the file keeps: cheaper proxies (the residual layer alone, fewer coding orders)
   // ranked the grids wrongly on half of the corpus.
   if (opt.grid_refinement > 0 || opt.effort == kMinEffort) {
     m.residual = make_grid(anim, opt.tolerance * L, opt.grid_refinement > 0 ? opt.grid_refinement : kUntriedRefinement);
+    m.residual.chunk_frames = chunk_frames;
     return quantize_to_grid(anim, m.residual, &out->rounded, error);
   }
   std::vector<Model> trials(kGridTrialSlots), trials_residual_only(kGridTrialSlots);
@@ -155,6 +159,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                     s.model = m;
                     s.model.meta.frame_count = uint32_t(part.frames.size());
                     s.model.residual = grid;
+                    s.model.residual.chunk_frames = chunk_frames;
                     s.snap = out->snap;
                     s.weights = out->weights;
                     s.traversal = out->traversal;
@@ -168,6 +173,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                   },
                   opt.effort == kMaxEffort ? GridSearch::Walk : GridSearch::Bracket);
   m.residual = choice.grid;
+  m.residual.chunk_frames = chunk_frames;
   *have_plain = choice.whole;
   if (choice.whole) {
     *plain = std::move(trials[choice.slot]);
@@ -231,6 +237,8 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (opt.low_rank < -1 || opt.low_rank > 64) return fail(error, "low-rank setting must be -1 (auto), 0 (off) or 1..64");
   if (!(opt.grid_refinement == 0 || (opt.grid_refinement >= 1 && opt.grid_refinement <= 16)))
     return fail(error, "grid refinement must be 0 (chosen by trial encodes) or in [1, 16]");
+  if (opt.chunk_frames > kMaxChunkFrames)
+    return fail(error, "chunk length must be 0 (chosen by the encoder) or in [1, " + std::to_string(kMaxChunkFrames) + "]");
   if (opt.effort < kMinEffort || opt.effort > kMaxEffort)
     return fail(error, "effort must be in [" + std::to_string(kMinEffort) + ", " + std::to_string(kMaxEffort) + "]");
   if (opt.model != ModelChoice::None && opt.low_rank > 0 && opt.keep_all_motions)
@@ -280,6 +288,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (!read_container(out->data(), out->size(), &written, error, &sections)) return false;
   rep.connectivity_bytes = connectivity_bytes(sections);
   rep.low_rank_components = m.low_rank.components;
+  rep.chunk_frames = std::min(m.residual.chunk_frames, m.meta.frame_count);
   rep.grid_refinement = grid_refinement(m.residual.step, opt.tolerance * m.meta.diag);
   for (const SectionInfo& s : sections) {
     if (s.tag == "LRNK") rep.low_rank_bytes = s.stored_bytes + s.header_bytes;

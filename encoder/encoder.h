@@ -22,6 +22,8 @@ enum class ModelChoice {
 // Segment lengths the rate control chooses from (the first wins ties).
 constexpr uint32_t kAutoSegmentFrames[] = {8, 4, 16};
 
+constexpr uint32_t kMaxChunkFrames = 4096;
+
 // EncodeOptions::effort's range; the highest is the default.
 constexpr int kMinEffort = 1, kMaxEffort = 3;
 
@@ -62,6 +64,9 @@ struct EncodeOptions {
   // Off: only paying motions are kept, and the file is the one without a PDE model when
   // that is smaller (encoder/rate/motion_choice.h).
   bool keep_all_motions = false;
+  // Frames per chunk of the residual layer (a decoder decodes one chunk to reach any of its
+  // frames, and holds two decoded chunks): 0 chosen by the encoder, else in [1, 4096].
+  uint32_t chunk_frames = 0;
   int threads = 0;            // 0: all hardware threads; output bytes never depend on it
   std::function<void(double)> progress;  // called with the fraction done in [0, 1]; may be empty
 };
@@ -82,6 +87,7 @@ struct EncodeReport {
   uint32_t motions_fitted = 0;      // PDE motions (segment, curve, axis) fitted, 0 without a model
   uint32_t motions_kept = 0;        // of them, the non-Zero motions in the file
   double grid_refinement = 0;       // the residual grid: how many times finer than the coarsest safe one
+  uint32_t chunk_frames = 0;        // frames per chunk of the residual layer
 };
 
 // Encodes `anim` into `out`. The returned error stats come from decoding `out` with the

@@ -8,6 +8,7 @@
 
 #include "codec/bytes.h"
 #include "codec/crc32.h"
+#include "codec/record_coder.h"
 
 namespace dcurve::testing {
 
@@ -20,11 +21,10 @@ struct RawSection {
 
 struct RawFile {
   uint16_t major = 0, minor = 0;
-  uint32_t flags = 0;  // bit 0: compact section headers
+  uint32_t flags = 0;
   std::vector<RawSection> sections;
+  std::vector<uint8_t> chunk_data;  // the bytes after the sections (the residual chunks)
 };
-
-constexpr uint32_t kCompactSections = 1;
 
 inline RawFile split_file(const std::vector<uint8_t>& bytes) {
   RawFile f;
@@ -33,56 +33,47 @@ inline RawFile split_file(const std::vector<uint8_t>& bytes) {
   f.major = r.u16();
   f.minor = r.u16();
   f.flags = r.u32();
-  uint32_t count = r.u32();
+  const uint32_t count = r.u32();
+  const uint64_t head = r.u64();
   r.u32();
   for (uint32_t i = 0; i < count && r.ok; ++i) {
     RawSection s;
     const uint8_t* tag = r.take(4);
     if (!tag) break;
     s.tag.assign(reinterpret_cast<const char*>(tag), 4);
-    uint64_t stored = 0;
-    if (f.flags & kCompactSections) {
-      s.flags = r.u8();
-      stored = r.varint();
-      s.raw_size = s.flags & 2 ? r.varint() : stored;
-    } else {
-      s.flags = r.u16();
-      r.u16();
-      stored = r.u64();
-      s.raw_size = r.u64();
-    }
+    s.flags = r.u8();
+    const uint64_t stored = r.varint();
+    s.raw_size = s.flags & 2 ? r.varint() : stored;
     r.u32();
     const uint8_t* p = r.take(size_t(stored));
     if (p) s.stored.assign(p, p + stored);
     f.sections.push_back(s);
   }
+  if (head <= bytes.size()) f.chunk_data.assign(bytes.begin() + std::ptrdiff_t(head), bytes.end());
   return f;
 }
 
 inline std::vector<uint8_t> assemble(const RawFile& f) {
+  ByteWriter body;
+  for (const RawSection& s : f.sections) {
+    size_t at = body.size();
+    body.bytes(s.tag.data(), 4);
+    body.u8(uint8_t(s.flags));
+    body.varint(s.stored.size());
+    if (s.flags & 2) body.varint(s.raw_size);
+    body.u32(crc32c(s.stored.data(), s.stored.size(), crc32c(body.data().data() + at, body.size() - at)));
+    body.bytes(s.stored.data(), s.stored.size());
+  }
   ByteWriter w;
   w.bytes("DCRV", 4);
   w.u16(f.major);
   w.u16(f.minor);
   w.u32(f.flags);
   w.u32(uint32_t(f.sections.size()));
-  w.u32(crc32c(w.data().data(), 16));
-  for (const RawSection& s : f.sections) {
-    size_t at = w.size();
-    w.bytes(s.tag.data(), 4);
-    if (f.flags & kCompactSections) {
-      w.u8(uint8_t(s.flags));
-      w.varint(s.stored.size());
-      if (s.flags & 2) w.varint(s.raw_size);
-    } else {
-      w.u16(s.flags);
-      w.u16(0);
-      w.u64(s.stored.size());
-      w.u64(s.raw_size);
-    }
-    w.u32(crc32c(s.stored.data(), s.stored.size(), crc32c(w.data().data() + at, w.size() - at)));
-    w.bytes(s.stored.data(), s.stored.size());
-  }
+  w.u64(28 + body.size());
+  w.u32(crc32c(w.data().data(), 24));
+  w.bytes(body.data().data(), body.size());
+  w.bytes(f.chunk_data.data(), f.chunk_data.size());
   return std::move(w.data());
 }
 
@@ -90,5 +81,67 @@ inline std::vector<uint8_t> assemble(const RawFile& f) {
 inline RawSection plain_section(const std::string& tag, bool required, const std::vector<uint8_t>& raw) {
   return {tag, uint16_t(required ? 1 : 0), raw, raw.size()};
 }
+
+// The chunk index of a residual payload (format_spec/residual.md), read independently of
+// codec/residual.cpp: where each chunk starts in the payload, its size and where its CRC sits.
+struct PayloadChunk {
+  size_t start = 0, size = 0, crc_at = 0;
+};
+inline std::vector<PayloadChunk> payload_chunks(const std::vector<uint8_t>& p) {
+  ByteReader r(p.data(), p.size());
+  r.u8();
+  r.u8();
+  r.varint();
+  const uint64_t count = r.varint();
+  std::vector<PayloadChunk> chunks;
+  for (uint64_t c = 0; c < count && r.ok; ++c) {
+    PayloadChunk e;
+    e.start = size_t(r.varint());
+    e.size = size_t(r.varint());
+    e.crc_at = r.position();
+    r.u32();
+    chunks.push_back(e);
+  }
+  for (PayloadChunk& e : chunks) e.start += r.position();
+  return chunks;
+}
+
+// Sets byte `at` of chunk `c` (counted from the chunk's start, past its values checksum)
+// and fixes the chunk's CRC, so the edit reaches the chunk's parser.
+inline void set_chunk_byte(std::vector<uint8_t>* p, size_t c, size_t at, uint8_t value) {
+  const PayloadChunk e = payload_chunks(*p)[c];
+  (*p)[e.start + 4 + at] = value;
+  const uint32_t crc = crc32c(p->data() + e.start, e.size);
+  for (int b = 0; b < 4; ++b) (*p)[e.crc_at + size_t(b)] = uint8_t(crc >> (8 * b));
+}
+inline uint8_t chunk_byte(const std::vector<uint8_t>& p, size_t c, size_t at) {
+  return p[payload_chunks(p)[c].start + 4 + at];
+}
+
+// A residual payload of one chunk of `frames` frames whose predictor table is `records`
+// (format_spec/residual.md: the cluster size and motion block, then one record per frame)
+// and nothing after it: what no writer writes, for the decoder's rules on the table.
+inline std::vector<uint8_t> table_payload(uint32_t frames, bool faces, const std::vector<std::vector<uint8_t>>& records) {
+  RangeEncoder enc;
+  RecordWriter table(enc);
+  for (const std::vector<uint8_t>& r : records) table.record(r);
+  ByteWriter chunk;
+  chunk.u32(0);  // values checksum: never reached
+  const std::vector<uint8_t>& stream = enc.finish();
+  chunk.bytes(stream.data(), stream.size());
+  ByteWriter w;
+  w.u8(3);
+  w.u8(faces ? 1 : 0);
+  w.varint(frames);
+  w.varint(1);
+  w.varint(0);
+  w.varint(chunk.size());
+  w.u32(crc32c(chunk.data().data(), chunk.size()));
+  w.bytes(chunk.data().data(), chunk.size());
+  return std::move(w.data());
+}
+
+// Predictor bytes of the table: kind | spatial << 4.
+inline uint8_t predictor_byte(int kind, int spatial) { return uint8_t(kind | spatial << 4); }
 
 }  // namespace dcurve::testing

@@ -11,6 +11,7 @@
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"
 #include "test_models.h"
+#include "test_util.h"
 
 namespace dcurve {
 namespace {
@@ -30,9 +31,7 @@ std::vector<uint8_t> small_encoded_file() {
   return bytes;
 }
 
-bool opens(const std::vector<uint8_t>& bytes, std::string* err) {
-  return Decoder::open_memory(bytes.data(), bytes.size(), err) != nullptr;
-}
+bool opens(const std::vector<uint8_t>& bytes, std::string* err) { return test::opens_and_decodes(bytes, err); }
 
 TEST(DecoderRobustness, RejectsEveryTruncation) {
   const std::vector<uint8_t> bytes = small_encoded_file();

@@ -12,6 +12,7 @@
 
 #include "codec/predictors.h"
 #include "codec/residual.h"
+#include "container_bytes.h"
 
 namespace dcurve {
 namespace {
@@ -176,21 +177,19 @@ TEST(GeometricPrediction, RoundTripsAndRejectsAnUnusableGeometryFrame) {
   for (PredictorChoice& p : self.frames[1].candidates[0]) p.g = 1;
   EXPECT_TRUE(encode_residuals(c.model, c.q, &self).empty());
   // Frame 1's predictor is byte 0x41 (Reference | Geometric << 4), r0 = zigzag(-1) = 1,
-  // g = zigzag(-1) = 1: point g at frame 1 itself (0) or at frame 2, which does not exist (2).
-  const std::vector<uint8_t> good = c.model.residual.payload;
-  const uint8_t pattern[3] = {0x41, 0x01, 0x01};
-  auto at = std::search(good.begin(), good.end(), pattern, pattern + 3);
-  ASSERT_NE(at, good.end());
+  // then g: point it at frame 1 itself (zigzag(0) = 0) or at frame 2, which does not exist.
+  const bool faces = !c.model.faces.empty();
+  const std::vector<uint8_t> frame0 = {0, 1, 0x20, 0x20, 0x20};
   for (uint8_t bad : {uint8_t(0x00), uint8_t(0x02)}) {
-    c.model.residual.payload = good;
-    c.model.residual.payload[size_t(at - good.begin()) + 2] = bad;
+    c.model.residual.payload =
+        testing::table_payload(2, faces, {{7, 1}, frame0, {0, 1, 0x41, 1, bad, 0x41, 1, 1, 0x41, 1, 1}});
     EXPECT_FALSE(decode_residuals(c.model, &back, &err));
     EXPECT_NE(err.find("unavailable frame"), std::string::npos) << err;
   }
   // Spatial mode 6 does not exist.
-  c.model.residual.payload = good;
-  c.model.residual.payload[size_t(at - good.begin())] = 0x61;
+  c.model.residual.payload = testing::table_payload(2, faces, {{7, 1}, frame0, {0, 1, 0x61, 1, 0x21, 1, 0x21, 1}});
   EXPECT_FALSE(decode_residuals(c.model, &back, &err));
+  EXPECT_NE(err.find("malformed"), std::string::npos) << err;
 }
 
 // Each geometry frame costs a decoder a table of weights: a frame may name at most
@@ -318,14 +317,12 @@ TEST(FitPrediction, RoundTripsAndRejectsAnUnusableGeometryFrame) {
   AffineCase c = affine_case();
   expect_round_trip(&c, two_frame_plan(SpatialMode::Fit));
   if (HasFatalFailure()) return;
-  // Frame 1's predictor is byte 0x51 (Reference | Fit << 4), r0 = 1, g = 1 (zigzag(-1)).
-  const std::vector<uint8_t> good = c.model.residual.payload;
-  const uint8_t pattern[3] = {0x51, 0x01, 0x01};
-  auto at = std::search(good.begin(), good.end(), pattern, pattern + 3);
-  ASSERT_NE(at, good.end());
+  // Frame 1's predictor is byte 0x51 (Reference | Fit << 4), r0 = 1, then g = 0: frame 1
+  // itself.
   std::vector<int32_t> back;
   std::string err;
-  c.model.residual.payload[size_t(at - good.begin()) + 2] = 0x00;  // g = frame 1 itself
+  c.model.residual.payload = testing::table_payload(
+      2, !c.model.faces.empty(), {{7, 1}, {0, 1, 0x20, 0x20, 0x20}, {0, 1, 0x51, 1, 0, 0x51, 1, 1, 0x51, 1, 1}});
   EXPECT_FALSE(decode_residuals(c.model, &back, &err));
   EXPECT_NE(err.find("unavailable frame"), std::string::npos) << err;
 }

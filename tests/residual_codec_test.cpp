@@ -9,6 +9,7 @@
 #include "codec/container.h"
 #include "codec/int_coder.h"
 #include "codec/residual.h"
+#include "container_bytes.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"
 #include "encoder/metrics.h"
@@ -93,9 +94,9 @@ LoopResult closed_loop(const Animation& anim, double tol, bool faces, const Resi
   Model back;
   std::string err;
   EXPECT_TRUE(read_container(file.data(), file.size(), &back, &err)) << err;
-  PredictorPlan decoded_plan;
+  ResidualPlan decoded_plan;
   EXPECT_TRUE(decode_residuals(back, &res.decoded, &err, ro, &decoded_plan)) << err;
-  res.stream_bytes = decoded_plan.stream_bytes;
+  if (decoded_plan.chunks.size() == 1) res.stream_bytes = decoded_plan.chunks[0].stream_bytes;
   std::vector<std::vector<float>> frames(anim.frames.size(), std::vector<float>(size_t(anim.vertex_count) * 3));
   for (size_t i = 0; i < res.decoded.size(); ++i)
     frames[i / frames[0].size()][i % frames[0].size()] = grid_to_model(back.residual, int(i % 3), res.decoded[i]);
@@ -282,14 +283,12 @@ TEST(ResidualCodec, PlanReferringToLaterFramesIsRejected) {
   const Animation anim = sheet_animation();
   std::vector<int32_t> q;
   Model m = grid_model(anim, 1e-3, true, &q);
-  m.residual.payload = encode_residuals(m, q);  // default plan: frame 0 None, then Reference f - 1
-  // Header 6 bytes, the cluster size (UINT32_MAX: a 5-byte varint) and the motion block
-  // (1 byte); per frame: order varint, candidate count, then per axis a kind byte and,
-  // for Reference, the zigzag varint of r0 - f (-1 -> 1).
-  const size_t ref_of_frame3_axis1 = 6 + 5 + 1 + (2 + 3) + 2 * (2 + 3 * 2) + 2 + 2 + 1;
-  ASSERT_EQ(m.residual.payload[ref_of_frame3_axis1], 1);
-  m.residual.payload[ref_of_frame3_axis1] = 3;  // -2 -> frame 1 decoded; use a later frame:
-  m.residual.payload[ref_of_frame3_axis1] = 2;  // +1: frame 4, not decoded yet
+  // The default plan's table (frame 0 None, then Reference f - 1, Parallelogram
+  // correction), but frame 3's axis 1 refers to frame 4 (zigzag(+1) = 2), not decoded yet.
+  const uint8_t none = testing::predictor_byte(0, 2), ref = testing::predictor_byte(1, 2);
+  std::vector<std::vector<uint8_t>> records = {{0xff, 0xff, 0xff, 0xff, 0x0f, 1}, {0, 1, none, none, none}};
+  for (uint32_t f = 1; f < kSheetFrames; ++f) records.push_back({0, 1, ref, 1, ref, f == 3 ? uint8_t(2) : uint8_t(1), ref, 1});
+  m.residual.payload = testing::table_payload(kSheetFrames, true, records);
   std::vector<int32_t> out;
   std::string err;
   EXPECT_FALSE(decode_residuals(m, &out, &err));
@@ -298,15 +297,16 @@ TEST(ResidualCodec, PlanReferringToLaterFramesIsRejected) {
 
 // Kinds (bit per PredictorKind) used by any (frame, cluster, axis) of a decoded payload.
 uint32_t kinds_in_use(const Model& m, const ResidualOptions& ro = {}) {
-  PredictorPlan plan;
+  ResidualPlan plan;
   std::string err;
   EXPECT_TRUE(decode_predictor_plan(m, &plan, &err, ro, true)) << err;
   uint32_t kinds = 0;
-  const uint32_t clusters = cluster_count(m.meta.vertex_count, plan.cluster_size);
-  for (const FramePredictors& fp : plan.frames)
-    for (uint32_t k = 0; k < clusters; ++k)
+  for (const CodedFrame& coded : coded_frames(plan)) {
+    const FramePredictors& fp = *coded.predictors;
+    for (uint32_t k = 0; k < cluster_count(m.meta.vertex_count, coded.chunk->cluster_size); ++k)
       for (const PredictorChoice& c : fp.candidates[fp.cluster_candidate.empty() ? 0 : fp.cluster_candidate[k]])
         kinds |= 1u << int(c.kind);
+  }
   return kinds;
 }
 
@@ -402,15 +402,16 @@ TEST(ResidualCodec, RandomClusterPlansRoundTripBitExactly) {
       std::string err;
       ASSERT_TRUE(decode_residuals(m, &out, &err)) << err;
       EXPECT_EQ(out, q);
-      PredictorPlan back;
+      ResidualPlan back;
       ASSERT_TRUE(decode_predictor_plan(m, &back, &err, {}, true)) << err;
+      ASSERT_EQ(back.chunks.size(), 1u);
       for (uint32_t f = 0; f < kSheetFrames; ++f)
-        EXPECT_EQ(back.frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
-      PredictorPlan with_values;  // the same plan from the decode that also gives the values
+        EXPECT_EQ(back.chunks[0].frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
+      ResidualPlan with_values;  // the same plan from the decode that also gives the values
       ASSERT_TRUE(decode_residuals(m, &out, &err, {}, &with_values)) << err;
       EXPECT_EQ(out, q);
       for (uint32_t f = 0; f < kSheetFrames; ++f)
-        EXPECT_EQ(with_values.frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
+        EXPECT_EQ(with_values.chunks[0].frames[f].cluster_candidate, plan.frames[f].cluster_candidate);
       // A traversal the caller supplies (built once, reused) codes and decodes the same bytes.
       const Traversal trav = build_traversal(m);
       ResidualOptions reuse;
@@ -445,25 +446,20 @@ TEST(ResidualCodec, InvalidCandidatesAndMotionMapsAreRejected) {
   bad.frames[2].cluster_candidate.assign(cluster_count(anim.vertex_count, plan.cluster_size),
                                          uint8_t(bad.frames[2].candidates.size()));
   EXPECT_TRUE(encode_residuals(m, q, &bad).empty());
-  // Header: version, neighbours, checksum (6 bytes), cluster size 7, motion block 3, then
-  // frame 0's order varint and its candidate count (1: frame 0 has one).
-  m.residual.payload = encode_residuals(m, q, &plan);
-  const std::vector<uint8_t> good = m.residual.payload;
-  ASSERT_EQ(good[9], 1);
+  // Tables no writer writes: a candidate count of 0 or 17, a cluster size of 0, kind 5.
   std::vector<int32_t> out;
   std::string err;
+  const uint8_t none = testing::predictor_byte(0, 2);
   for (uint8_t count : {0, 17}) {
-    m.residual.payload = good;
-    m.residual.payload[9] = count;
+    m.residual.payload = testing::table_payload(kSheetFrames, true, {{7, 3}, {0, count, none, none, none}});
     EXPECT_FALSE(decode_residuals(m, &out, &err));
     EXPECT_NE(err.find("candidate count"), std::string::npos) << err;
   }
-  m.residual.payload = good;
-  m.residual.payload[6] = 0;  // cluster size 0
+  m.residual.payload = testing::table_payload(kSheetFrames, true, {{0, 3}, {0, 1, none, none, none}});
   EXPECT_FALSE(decode_residuals(m, &out, &err));
   EXPECT_NE(err.find("cluster size"), std::string::npos) << err;
-  m.residual.payload = good;
-  m.residual.payload[10] = uint8_t(5 | (m.residual.payload[10] & 0xF0));  // kind 5 does not exist
+  const uint8_t kind5 = testing::predictor_byte(5, 2);
+  m.residual.payload = testing::table_payload(kSheetFrames, true, {{7, 3}, {0, 1, kind5, none, none}});
   EXPECT_FALSE(decode_residuals(m, &out, &err));
   EXPECT_NE(err.find("malformed"), std::string::npos) << err;
 }

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -68,23 +69,40 @@ inline double decoded_max_error(const std::vector<uint8_t>& bytes, const Animati
   EXPECT_TRUE(dec) << err;
   if (!dec) return HUGE_VAL;
   std::vector<std::vector<float>> decoded(anim.frames.size(), std::vector<float>(size_t(anim.vertex_count) * 3));
-  for (uint32_t f = 0; f < decoded.size(); ++f) dec->evaluate_frame(f, decoded[f].data());
+  for (uint32_t f = 0; f < decoded.size(); ++f)
+    if (!dec->evaluate_frame(f, decoded[f].data())) return std::numeric_limits<double>::infinity();
   return measure_error(anim, decoded).max_error;
 }
 
-// Whether `file` is either refused or decodes every frame exactly as `original` (an open
-// decoder of the undamaged file) does: what a damaged byte that no check can see must do.
+// Whether `file` is either refused (at open, or by the evaluation of a frame whose chunk
+// fails its checks) or decodes every frame exactly as `original` (an open decoder of the
+// undamaged file) does: what a damaged byte that no check can see must do.
 inline ::testing::AssertionResult refused_or_decodes_as(const std::vector<uint8_t>& file, const Decoder& original) {
   std::string err;
   auto dec = Decoder::open_memory(file.data(), file.size(), &err);
   if (!dec) return ::testing::AssertionSuccess();
   std::vector<float> a(size_t(original.vertex_count()) * 3), b(a.size());
   for (uint32_t f = 0; f < dec->frame_count(); ++f) {
-    dec->evaluate_frame(f, a.data());
-    original.evaluate_frame(f, b.data());
+    if (!dec->evaluate_frame(f, a.data())) return ::testing::AssertionSuccess();
+    if (!original.evaluate_frame(f, b.data())) return ::testing::AssertionFailure() << "original fails frame " << f;
     if (a != b) return ::testing::AssertionFailure() << "decodes frame " << f << " differently";
   }
   return ::testing::AssertionSuccess();
+}
+
+// Whether `bytes` open and every frame evaluates: what a damaged file must not do (a chunk
+// is checked when a frame needs it, not at open).
+inline bool opens_and_decodes(const std::vector<uint8_t>& bytes, std::string* error) {
+  auto dec = Decoder::open_memory(bytes.data(), bytes.size(), error);
+  if (!dec) return false;
+  std::vector<float> xyz(size_t(dec->vertex_count()) * 3);
+  Error e;
+  for (uint32_t f = 0; f < dec->frame_count(); ++f)
+    if (!dec->evaluate_frame(f, xyz.data(), &e)) {
+      *error = e.message;
+      return false;
+    }
+  return true;
 }
 
 // A unit square as two triangles in a text format ("obj", "off" or "ply"), its second

@@ -91,7 +91,7 @@ const Case* load(const std::string& seq, double tol) {
     rounded[i] = int64_t(std::nearbyint((double(anim.frames[i / n][i % n]) - layer.origin[i % 3]) / layer.step));
   for (size_t i = 0; i < c.q.size(); ++i) delta[i] = rounded[i] - (i >= n ? rounded[i - n] : 0);
   c.delta_zstd = varint_zstd(delta);
-  PredictorPlan plan;
+  ResidualPlan plan;
   if (!decode_predictor_plan(c.model, &plan, &err, {}, true)) return nullptr;
   const std::vector<int64_t> residuals = residual_values(c.model, c.q, plan);
   c.plan_zstd = varint_zstd(residuals);

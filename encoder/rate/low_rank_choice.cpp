@@ -75,15 +75,16 @@ uint32_t mean_shift_for(const GridComponents& pca, double step) {
 
 // Estimated bits of each frame's residuals under `plan` (indexed by frame), one context per
 // frame: only compared with the same estimate of another plan.
-std::vector<double> frame_bits(const Model& m, const std::vector<int32_t>& q, const PredictorPlan& plan,
+std::vector<double> frame_bits(const Model& m, const std::vector<int32_t>& q, const ResidualPlan& plan,
                                const ResidualOptions& ro) {
   const size_t n = size_t(m.meta.vertex_count) * 3;
   const std::vector<int64_t> r = residual_values(m, q, plan, ro);
+  const std::vector<CodedFrame> coded = coded_frames(plan);
   std::vector<double> bits(m.meta.frame_count, 0.0);
   const std::vector<uint8_t> contexts(n, 0);
-  for (size_t k = 0; k < plan.order.size(); ++k) {
+  for (size_t k = 0; k < coded.size() && (k + 1) * n <= r.size(); ++k) {
     const std::vector<int64_t> slice(r.begin() + std::ptrdiff_t(k * n), r.begin() + std::ptrdiff_t((k + 1) * n));
-    bits[plan.order[k]] = estimate_residual_bits(slice, contexts);
+    bits[coded[k].frame] = estimate_residual_bits(slice, contexts);
   }
   return bits;
 }
@@ -162,8 +163,8 @@ bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>&
     one.gop_sizes = {plan_options.gop_sizes[i]};
     one.threads = each;
     std::vector<int32_t> q = rounded;
-    const PredictorPlan plan = choose_plan_and_grid(*trial, frames, snap_distance, &q, ro, one);
-    payloads[i] = encode_residuals(*trial, q, &plan, ro);
+    const ResidualPlan plan = choose_chunked_plan(*trial, frames, snap_distance, &q, ro, one);
+    payloads[i] = encode_residuals(*trial, q, plan, ro);
   });
   trial->residual.payload.clear();
   for (std::vector<uint8_t>& p : payloads)
@@ -203,7 +204,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
 
   // What the residual layer pays today, frame by frame.
   std::vector<int32_t> q_without;
-  PredictorPlan plan_without;
+  ResidualPlan plan_without;
   if (!decode_residuals(*model, &q_without, error, shared, &plan_without)) return false;
   const std::vector<double> bits_without = frame_bits(*model, q_without, plan_without, shared);
 
@@ -278,7 +279,7 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
       low_rank_frame(trial.low_rank, sample.frames[j], mean_and_basis.data(), n, sampled.data() + j * n);
     ResidualOptions ro = shared;
     ro.model_prediction = &sampled;
-    const PredictorPlan plan = choose_plan_and_grid(sample.model, sample.input, snap_distance, &q, ro, screen);
+    const ResidualPlan plan = choose_chunked_plan(sample.model, sample.input, snap_distance, &q, ro, screen);
     const std::vector<double> bits = frame_bits(sample.model, q, plan, ro);
     double saved = 0;
     for (size_t j = 0; j < sample.frames.size(); ++j)
@@ -461,7 +462,8 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   ResidualPlanOptions trial_plan;
   trial_plan.gop_sizes = {1};
   trial_plan.threads = options.threads;
-  if (F > 2 && plan_without.order[1] > 1) trial_plan.gop_sizes.push_back(plan_without.order[1]);
+  const std::vector<uint32_t>& order_without = plan_without.chunks[0].order;
+  if (order_without.size() > 2 && order_without[1] > 1) trial_plan.gop_sizes.push_back(order_without[1]);
   uint64_t best = forced ? UINT64_MAX : rep.bytes_without;
   Model best_model;
   const bool cheap = double(F) * model->meta.vertex_count <= kCheapTrial;

@@ -56,7 +56,7 @@ bool choose_motions(Model* model, const Model& baseline, const std::vector<std::
     if (prediction.empty()) break;  // nothing left to plan with: the baseline stands
     ResidualOptions ro;
     ro.model_prediction = &prediction;
-    const PredictorPlan plan = choose_plan_and_grid(*model, frames, snap_distance, &q, ro, plan_options);
+    const ResidualPlan plan = choose_chunked_plan(*model, frames, snap_distance, &q, ro, plan_options);
     ++rep.plans;
     bool dropped = false;
     if (!options.keep_all && rep.plans <= options.max_screens) {
@@ -80,7 +80,7 @@ bool choose_motions(Model* model, const Model& baseline, const std::vector<std::
     // A plan made with motions since dropped predicts from values the file no longer has:
     // only a plan that dropped nothing codes the payload.
     if (dropped) continue;
-    model->residual.payload = encode_residuals(*model, q, &plan, ro);
+    model->residual.payload = encode_residuals(*model, q, plan, ro);
     if (model->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
     break;
   }

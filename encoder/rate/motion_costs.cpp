@@ -16,12 +16,13 @@ double ValueCosts::residual_bits(int64_t r) const {
   return class_bits[size_t(k)] + e;
 }
 
-bool value_costs(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
+bool value_costs(const Model& model, const std::vector<int32_t>& q, const ResidualPlan& plan,
                  const ResidualOptions& ro, ValueCosts* out, std::string* error) {
   const uint32_t V = model.meta.vertex_count;
   const size_t n = size_t(V) * 3;
   const std::vector<int64_t> r = residual_values(model, q, plan, ro);
-  if (r.size() != n * plan.order.size() || plan.frames.size() != model.meta.frame_count)
+  const std::vector<CodedFrame> coded = coded_frames(plan);
+  if (r.size() != n * coded.size() || coded.size() != model.meta.frame_count)
     return fail(error, "internal error: residual values do not match the plan");
   std::vector<double> hist(kResidualClasses, 0.0);
   for (int64_t x : r) {
@@ -35,11 +36,11 @@ bool value_costs(const Model& model, const std::vector<int32_t>& q, const Predic
   const Traversal trav = build_traversal(model);
   out->bits.assign(q.size(), 0.f);
   out->by_model.assign(q.size(), 0);
-  for (size_t k = 0; k < plan.order.size(); ++k) {
-    const uint32_t f = plan.order[k];
-    const FramePredictors& fp = plan.frames[f];
+  for (size_t k = 0; k < coded.size(); ++k) {
+    const uint32_t f = coded[k].frame;
+    const FramePredictors& fp = *coded[k].predictors;
     for (uint32_t pos = 0; pos < V; ++pos) {
-      const uint32_t cluster = pos / std::max(plan.cluster_size, 1u);
+      const uint32_t cluster = pos / std::max(coded[k].chunk->cluster_size, 1u);
       const size_t j = fp.cluster_candidate.empty() ? 0 : fp.cluster_candidate[cluster];
       const size_t at = (size_t(f) * V + trav.order[pos]) * 3;
       for (int a = 0; a < 3; ++a) {
@@ -55,8 +56,19 @@ double motion_record_bytes(const CurveMotion& m) {
   return m.basis == Basis::Zero ? 0 : double(motion_record_size(m) - 1);
 }
 
+namespace {
+// What write_container can write: a residual layer whose payload is not coded yet gets one
+// of zeros (the round trips below read the other sections back).
+std::vector<uint8_t> written(const Model& model) {
+  if (!(model.residual.step > 0) || !model.residual.payload.empty()) return write_container(model);
+  Model m = model;
+  m.residual.payload = encode_residuals(m, std::vector<int32_t>(size_t(m.meta.vertex_count) * 3 * m.meta.frame_count, 0));
+  return write_container(m);
+}
+}  // namespace
+
 double segs_compression(const Model& model, std::string* error) {
-  const std::vector<uint8_t> bytes = write_container(model);
+  const std::vector<uint8_t> bytes = written(model);
   Model back;
   std::vector<SectionInfo> sections;
   if (!read_container(bytes.data(), bytes.size(), &back, error, &sections)) return -1;
@@ -72,7 +84,7 @@ bool coded_value_costs(const Model& baseline, ValueCosts* out, std::string* erro
     if (!model_grid_prediction(baseline, UINT64_MAX, &prediction, error)) return false;
     ro.model_prediction = &prediction;
   }
-  PredictorPlan plan;
+  ResidualPlan plan;
   if (!decode_residuals(baseline, &q, error, ro, &plan)) return false;
   return value_costs(baseline, q, plan, ro, out, error);
 }
@@ -86,7 +98,7 @@ std::pair<uint32_t, uint32_t> predicted_frames(const Model& model, size_t s) {
 bool stored_model_prediction(const Model& model, std::vector<int32_t>* prediction, std::string* error) {
   prediction->clear();
   if (!has_model_prediction(model)) return true;
-  const std::vector<uint8_t> bytes = write_container(model);
+  const std::vector<uint8_t> bytes = written(model);
   Model stored;
   if (!read_container(bytes.data(), bytes.size(), &stored, error)) return false;
   return model_grid_prediction(stored, UINT64_MAX, prediction, error);

@@ -25,7 +25,7 @@ struct ValueCosts {
 // order-0 entropy of the value's exponent class over the whole stream plus its mantissa
 // bits. The coder's contexts are ignored, so only differences between two plans of the
 // same frames mean something.
-bool value_costs(const Model& model, const std::vector<int32_t>& q, const PredictorPlan& plan,
+bool value_costs(const Model& model, const std::vector<int32_t>& q, const ResidualPlan& plan,
                  const ResidualOptions& ro, ValueCosts* out, std::string* error);
 
 // The same for the residual payload `model` already carries (its low-rank prediction, if

@@ -31,7 +31,7 @@ nlohmann::json predictor_use(const Model& m) {
     if (!model_grid_prediction(m, UINT64_MAX, &prediction, &err)) return nullptr;
     options.model_prediction = &prediction;
   }
-  PredictorPlan plan;
+  ResidualPlan plan;
   if (!decode_predictor_plan(m, &plan, &err, options, true)) return nullptr;
   static const char* kinds[] = {"none", "reference", "linear", "model", "motion"};
   static const char* spatial[] = {"off", "mean", "parallelogram", "blend", "geometric", "fit"};
@@ -43,9 +43,18 @@ nlohmann::json predictor_use(const Model& m) {
   // kind, spatial: each frame's first candidate, per axis; cluster_kind: what every
   // (frame, cluster, axis) actually uses.
   nlohmann::json k = nlohmann::json::object(), sp = nlohmann::json::object(), ck = nlohmann::json::object();
-  const uint32_t clusters = cluster_count(m.meta.vertex_count, plan.cluster_size);
   uint64_t candidates = 0, clustered_frames = 0, motion_maps = 0;
-  for (const FramePredictors& fp : plan.frames) {
+  bool time_order = true;
+  uint32_t cluster_size = 0;
+  std::vector<uint32_t> stream_bytes(m.meta.frame_count, 0);  // by frame
+  uint32_t position = 0;
+  for (const CodedFrame& coded : coded_frames(plan)) {
+    const FramePredictors& fp = *coded.predictors;
+    const uint32_t clusters = cluster_count(m.meta.vertex_count, coded.chunk->cluster_size);
+    time_order = time_order && coded.frame == position++;
+    cluster_size = std::max(cluster_size, std::min(coded.chunk->cluster_size, m.meta.vertex_count));
+    const uint32_t local = uint32_t(coded.predictors - coded.chunk->frames.data());
+    if (local < coded.chunk->stream_bytes.size()) stream_bytes[coded.frame] = coded.chunk->stream_bytes[local];
     for (const PredictorChoice& c : fp.candidates[0]) {
       count(k, kind_name(c));
       count(sp, size_t(c.spatial) < kSpatialModeCount ? spatial[size_t(c.spatial)] : "other");
@@ -62,18 +71,18 @@ nlohmann::json predictor_use(const Model& m) {
       motion_maps += motion;
     }
   }
-  bool time_order = true;
-  for (size_t i = 0; i < plan.order.size(); ++i) time_order = time_order && plan.order[i] == i;
   return {{"kind", k},
           {"spatial", sp},
           {"coding_order", time_order ? "time" : "hierarchical"},
-          {"cluster_size", std::min<uint64_t>(plan.cluster_size, m.meta.vertex_count)},
-          {"clusters", clusters},
+          {"cluster_size", cluster_size},
+          {"clusters", cluster_count(m.meta.vertex_count, std::max(cluster_size, 1u))},
+          {"chunk_frames", plan.chunk_frames},
+          {"chunks", plan.chunks.size()},
           {"candidates", candidates},
           {"clustered_frames", clustered_frames},
           {"cluster_kind", ck},
           {"motion_transforms", motion_maps},
-          {"frame_stream_bytes", plan.stream_bytes}};
+          {"frame_stream_bytes", stream_bytes}};
 }
 
 std::string predictor_use_text(const nlohmann::json& use) {

@@ -531,3 +531,62 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
 }
 
 }  // namespace dcurve
+
+namespace dcurve {
+namespace {
+// The part of a whole-animation input that one chunk's plan sees: the chunk's frames, its
+// grid values and Model predictions, its snapping runs.
+struct ChunkInput {
+  Model model;
+  std::vector<std::vector<float>> frames;
+  std::vector<int32_t> q, prediction;
+  std::vector<std::vector<AxisRun>> runs;
+};
+
+void cut_chunk(const Model& model, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& q,
+               const ResidualOptions& options, const ResidualPlanOptions& po, ChunkSpan span, ChunkInput* in) {
+  const size_t stride = size_t(model.meta.vertex_count) * 3;
+  auto cut = [&](const auto& all, size_t per_frame, auto* out) {
+    out->assign(all.begin() + ptrdiff_t(per_frame * span.first),
+                all.begin() + ptrdiff_t(per_frame * (span.first + span.count)));
+  };
+  in->model.meta.frame_count = span.count;
+  cut(frames, 1, &in->frames);
+  cut(q, stride, &in->q);
+  if (options.model_prediction) cut(*options.model_prediction, stride, &in->prediction);
+  if (po.axis_runs) cut(*po.axis_runs, 1, &in->runs);
+}
+}  // namespace
+
+ResidualPlan choose_chunked_plan(const Model& model, const std::vector<std::vector<float>>& frames,
+                                 double max_distance, std::vector<int32_t>* q, const ResidualOptions& options,
+                                 const ResidualPlanOptions& po) {
+  const uint32_t F = model.meta.frame_count;
+  const uint32_t K = model.residual.chunk_frames == 0 ? F : std::min(model.residual.chunk_frames, F);
+  ResidualPlan plan;
+  plan.chunk_frames = std::max(K, 1u);
+  if (K >= F) {
+    plan.chunks.push_back(choose_plan_and_grid(model, frames, max_distance, q, options, po));
+    return plan;
+  }
+  Traversal owned;
+  ResidualOptions chunk_options = options;
+  chunk_options.traversal = &traversal_for(model, options, &owned);
+  ChunkInput in;
+  in.model = model;
+  in.model.residual.payload.clear();
+  in.model.low_rank = LowRankModel();
+  const size_t stride = size_t(model.meta.vertex_count) * 3;
+  for (uint32_t c = 0; c < chunk_count(F, K); ++c) {
+    const ChunkSpan span = chunk_span(F, K, c);
+    cut_chunk(model, frames, *q, options, po, span, &in);
+    chunk_options.model_prediction = options.model_prediction ? &in.prediction : nullptr;
+    ResidualPlanOptions chunk_po = po;
+    chunk_po.axis_runs = po.axis_runs ? &in.runs : nullptr;
+    plan.chunks.push_back(choose_plan_and_grid(in.model, in.frames, max_distance, &in.q, chunk_options, chunk_po));
+    std::copy(in.q.begin(), in.q.end(), q->begin() + ptrdiff_t(stride * span.first));
+  }
+  return plan;
+}
+
+}  // namespace dcurve

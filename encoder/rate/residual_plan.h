@@ -59,7 +59,7 @@ struct ResidualPlanOptions {
 // file sizes exactly.
 double estimate_residual_bits(const std::vector<int64_t>& residuals, const std::vector<uint8_t>& contexts);
 
-// Chooses the coding order, the predictor of every frame (the same for its three axes) and, when
+// Chooses, for frames coded as one chunk, the coding order, the predictor of every frame (the same for its three axes) and, when
 // plan_options.snap is set, the grid values themselves: of the grid points whose decoded
 // position lies within max_distance of the input vertex, the one cheapest to code against
 // its prediction (the decoder reproduces any grid value exactly, so the error bound holds
@@ -73,6 +73,12 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
                                    double max_distance, std::vector<int32_t>* q,
                                    const ResidualOptions& options = {},
                                    const ResidualPlanOptions& plan_options = {});
+
+// choose_plan_and_grid with the frames cut into chunks of model.residual.chunk_frames
+// (0: one chunk), each planned alone: no predictor reaches into another chunk.
+ResidualPlan choose_chunked_plan(const Model& model, const std::vector<std::vector<float>>& frames,
+                                 double max_distance, std::vector<int32_t>* q, const ResidualOptions& options = {},
+                                 const ResidualPlanOptions& plan_options = {});
 
 // Per frame, the grid values of each input coordinate that choose_plan_and_grid may snap it
 // to (plan_steps.h), as it computes them for these arguments; on up to `threads` threads

@@ -1,5 +1,8 @@
 // libFuzzer entry: any bytes -> Decoder::open_memory, and when a file opens, evaluate it at
-// frames and between them, with normals. A crash, sanitizer report or leak is a finding.
+// frames and between them (through the decoder and through a cursor playing the first
+// frames in order), with normals. A crash, sanitizer report, leak or failure without a
+// message is a finding.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -15,8 +18,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     return 0;
   }
   std::vector<float> xyz(size_t(dec->vertex_count()) * 3), normals(xyz.size());
-  for (double t : {0.0, 0.37, 0.5, 1.0, -3.0, 7.0}) dec->evaluate(t, xyz.data());
+  dcurve::Error e;
+  for (double t : {0.0, 0.37, 0.5, 1.0, -3.0, 7.0})
+    if (!dec->evaluate(t, xyz.data(), &e) && e.message.empty()) __builtin_trap();
   dec->evaluate_frame(dec->frame_count() - 1, xyz.data());
+  auto cursor = dec->make_cursor();
+  for (uint32_t f = 0; f < std::min<uint32_t>(dec->frame_count(), 40); ++f)
+    if (!cursor->evaluate_frame(f, xyz.data(), &e) && e.message.empty()) __builtin_trap();
   dec->compute_normals(xyz.data(), normals.data());
   return 0;
 }

@@ -1,0 +1,93 @@
+#include "codec/crc32.h"
+#include "decoder_state.h"
+
+namespace dcurve {
+
+size_t SharedState::memory_bytes() const {
+  const Model& m = model;
+  size_t bytes = sizeof(*this) + m.faces.capacity() * 4 + m.curves.vertices.capacity() * 4 +
+                 m.curves.offsets.capacity() * 4 + m.curves.closed.capacity() + m.curves.u.capacity() * 4 +
+                 m.residual.payload.capacity() + m.low_rank.coeffs.capacity() * 4 + m.low_rank.poses.capacity() * 4 +
+                 m.low_rank.basis_payload.capacity() + index.chunks.capacity() * sizeof(ChunkEntry);
+  for (const Segment& s : m.segments) {
+    bytes += s.motion.capacity() * sizeof(CurveMotion);
+    for (const CurveMotion& cm : s.motion) bytes += cm.coeffs.capacity() * sizeof(float);
+  }
+  for (const std::vector<uint32_t>* a : {&traversal.order, &traversal.nb_offsets, &traversal.nb, &traversal.para_offsets,
+                                          &traversal.para, &traversal.fit_offsets, &traversal.fit})
+    bytes += a->capacity() * 4;
+  return bytes + predictor.memory_bytes() + (chunks ? chunks->memory_bytes() : 0);
+}
+
+ChunkWindow::ChunkWindow(const SharedState& shared) : shared_(shared) {}
+
+size_t ChunkWindow::memory_bytes() const {
+  return sizeof(*this) + workspace_.bytes() + read_buffer_.capacity() +
+         (values_.capacity() + kept_.capacity()) * sizeof(int32_t) +
+         (scratch_.capacity() + model_scratch_.capacity()) * sizeof(float);
+}
+
+bool ChunkWindow::decode_chunk(uint32_t c, Error* error) {
+  const ChunkEntry& e = shared_.index.chunks[c];
+  const uint8_t* bytes = shared_.chunks->fetch(e.offset, e.size, &read_buffer_, error);
+  if (!bytes) return false;
+  const std::string name = "chunk " + std::to_string(c);
+  if (kVerifyChecksums && crc32c(bytes, size_t(e.size)) != e.crc) {
+    if (error) *error = {Status::CorruptChunk, name + " is corrupted (checksum mismatch)"};
+    return false;
+  }
+  const Model& m = shared_.model;
+  const uint32_t V = m.meta.vertex_count;
+  const ChunkSpan span = chunk_span(m.meta.frame_count, shared_.index.chunk_frames, c);
+  chunk_ = UINT32_MAX;  // until the decode succeeds
+  values_.resize(size_t(span.count) * V * 3);
+  model_scratch_.resize(size_t(V) * 3);
+  ChunkModelFrames model_frames(shared_.predictor, span.first, model_scratch_.data());
+  ResidualOptions options;
+  options.traversal = &shared_.traversal;
+  if (shared_.predictor.active()) options.model_frames = &model_frames;
+  std::string why;
+  if (!decode_residual_chunk(V, shared_.traversal, bytes, size_t(e.size), span.count, values_.data(), options,
+                             &workspace_, &why)) {
+    if (error) *error = {Status::CorruptChunk, name + ": " + why};
+    return false;
+  }
+  chunk_ = c;
+  return true;
+}
+
+const int32_t* ChunkWindow::frame_values(uint32_t f, Error* error) {
+  const uint32_t K = shared_.index.chunk_frames, c = f / K;
+  if (f == kept_frame_ && c != chunk_) return kept_.data();
+  if (c != chunk_ && !decode_chunk(c, error)) return nullptr;
+  return values_.data() + size_t(f - c * K) * shared_.model.meta.vertex_count * 3;
+}
+
+bool ChunkWindow::evaluate(double x, float* out, Error* error) {
+  const FrameEvaluator& evaluator = shared_.predictor.evaluator();
+  const FrameEvaluator::Place place = evaluator.locate(x);
+  if (!shared_.has_residual()) {
+    evaluator.model_at(place, out);
+    return true;
+  }
+  const size_t n = size_t(shared_.model.meta.vertex_count) * 3;
+  const int32_t* frame = frame_values(place.i, error);
+  if (!frame) return false;
+  const int32_t* next = nullptr;
+  if (place.w != 0.f) {
+    const uint32_t K = shared_.index.chunk_frames;
+    if ((place.i + 1) % K == 0 && frame != kept_.data()) {
+      // Across a chunk boundary: frame i is kept while the next chunk replaces its own.
+      kept_.assign(frame, frame + n);
+      kept_frame_ = place.i;
+      frame = kept_.data();
+    }
+    next = frame_values(place.i + 1, error);
+    if (!next) return false;
+  }
+  scratch_.resize(n);
+  evaluator.evaluate(place, shared_.model.residual, frame, next, scratch_.data(), out);
+  return true;
+}
+
+}  // namespace dcurve

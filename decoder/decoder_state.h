@@ -1,0 +1,58 @@
+// What an open decoder shares among its cursors, and a cursor's window of decoded chunks.
+// Internal to the decoder library.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "chunk_source.h"
+#include "codec/model.h"
+#include "codec/predictors.h"
+#include "codec/residual.h"
+#include "dcurve.hpp"
+#include "model_prediction.h"
+
+namespace dcurve {
+
+// Immutable after open.
+struct SharedState {
+  Model model;          // residual.payload: the chunk index only
+  ResidualIndex index;  // empty without a residual layer
+  Traversal traversal;  // the residual layer's vertex order and neighbours
+  GridPredictor predictor;
+  std::unique_ptr<ChunkSource> chunks;
+
+  bool has_residual() const { return !index.chunks.empty(); }
+  size_t memory_bytes() const;
+};
+
+// One decoded chunk and the frame before it (for the blend across a chunk boundary), and
+// the buffers decoding reuses: memory for K + 1 frames, whatever the clip's length.
+class ChunkWindow {
+ public:
+  explicit ChunkWindow(const SharedState& shared);
+  // Positions at frame coordinate x into out (vertex_count * 3 floats).
+  bool evaluate(double x, float* out, Error* error);
+  size_t memory_bytes() const;
+  uint32_t frame_count() const { return shared_.model.meta.frame_count; }
+
+ private:
+  // Grid values of frame f, decoding its chunk when it is not the one held; null with the
+  // error set when the chunk cannot be read or decoded. Invalidates earlier pointers unless
+  // f is in the chunk held.
+  const int32_t* frame_values(uint32_t f, Error* error);
+  bool decode_chunk(uint32_t c, Error* error);
+
+  const SharedState& shared_;
+  uint32_t chunk_ = UINT32_MAX;  // the chunk whose frames `values_` holds
+  std::vector<int32_t> values_;  // frame-major
+  uint32_t kept_frame_ = UINT32_MAX;  // the frame `kept_` holds
+  std::vector<int32_t> kept_;
+  ResidualWorkspace workspace_;
+  std::vector<uint8_t> read_buffer_;
+  std::vector<float> scratch_, model_scratch_;
+};
+
+}  // namespace dcurve

@@ -1,0 +1,134 @@
+// The runtime decoder's memory does not grow with the clip: a file of 600 frames plays frame
+// by frame within the same bound as one of 300, checked through memory_bytes() and through
+// every allocation the decoder makes (this program replaces operator new to count them).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "decoder/dcurve.hpp"
+#include "encoder/encoder.h"
+#include "encoder/io/files.h"
+
+namespace {
+std::atomic<size_t> live_bytes{0}, peak_bytes{0};
+}  // namespace
+
+// Every allocation records its size in a header, so the live total is exact.
+void* operator new(size_t size) {
+  void* p = std::malloc(size + 16);
+  if (!p) throw std::bad_alloc();
+  *static_cast<size_t*>(p) = size;
+  const size_t now = live_bytes += size;
+  size_t peak = peak_bytes.load();
+  while (now > peak && !peak_bytes.compare_exchange_weak(peak, now)) {
+  }
+  return static_cast<char*>(p) + 16;
+}
+void operator delete(void* p) noexcept {
+  if (!p) return;
+  void* base = static_cast<char*>(p) - 16;
+  live_bytes -= *static_cast<size_t*>(base);
+  std::free(base);
+}
+void operator delete(void* p, size_t) noexcept { operator delete(p); }
+
+namespace dcurve {
+namespace {
+
+constexpr uint32_t kSide = 12, kChunkFrames = 16;
+
+// A square sheet of kSide x kSide vertices under a travelling wave: every frame differs, so
+// every chunk has residuals to decode.
+Animation wave(uint32_t frames) {
+  Animation a;
+  a.vertex_count = kSide * kSide;
+  for (uint32_t r = 0; r + 1 < kSide; ++r)
+    for (uint32_t c = 0; c + 1 < kSide; ++c) {
+      const uint32_t v = r * kSide + c;
+      a.faces.insert(a.faces.end(), {v, v + 1, v + kSide, v + kSide, v + 1, v + kSide + 1});
+    }
+  for (uint32_t f = 0; f < frames; ++f) {
+    std::vector<float> xyz;
+    for (uint32_t v = 0; v < a.vertex_count; ++v) {
+      const float x = float(v % kSide), y = float(v / kSide);
+      xyz.insert(xyz.end(), {x, y, 0.8f * std::sin(0.5f * x + 0.11f * float(f)) * std::cos(0.3f * y - 0.07f * float(f))});
+    }
+    a.frames.push_back(xyz);
+  }
+  return a;
+}
+
+struct Playback {
+  size_t memory_bytes = 0;  // decoder + cursor after every frame was played, as they report it
+  size_t live_bytes = 0;    // the heap they hold then, as counted
+  size_t peak_bytes = 0;    // most bytes live at once from opening to the last frame
+  size_t raw_bytes = 0;
+};
+
+Playback play(uint32_t frames, const std::string& path) {
+  EncodeOptions o;
+  o.grid_refinement = 2;
+  o.low_rank = 0;
+  o.chunk_frames = kChunkFrames;
+  std::vector<uint8_t> bytes;
+  std::string err;
+  EXPECT_TRUE(encode_animation(wave(frames), o, &bytes, nullptr, &err)) << err;
+  EXPECT_TRUE(write_file_atomic(path, bytes.data(), bytes.size(), &err)) << err;
+  bytes = {};
+  Playback p;
+  const size_t before = live_bytes;
+  peak_bytes = before;
+  {
+    auto dec = Decoder::open_file(path, &err);
+    EXPECT_TRUE(dec) << err;
+    if (!dec) return p;
+    EXPECT_EQ(dec->chunk_frames(), kChunkFrames);
+    auto cursor = dec->make_cursor();
+    const size_t held = live_bytes;
+    std::vector<float> xyz(size_t(dec->vertex_count()) * 3);
+    const size_t output = live_bytes - held;  // the caller's buffer, not the decoder's
+    for (uint32_t f = 0; f < dec->frame_count(); ++f) EXPECT_TRUE(cursor->evaluate_frame(f, xyz.data())) << f;
+    p.memory_bytes = dec->memory_bytes() + cursor->memory_bytes();
+    p.live_bytes = live_bytes - before - output;
+    p.peak_bytes = peak_bytes - before - output;
+    p.raw_bytes = size_t(12) * dec->vertex_count() * dec->frame_count();
+  }
+  std::remove(path.c_str());
+  return p;
+}
+
+TEST(DecoderMemory, PlaybackStaysWithinABoundThatDoesNotGrowWithTheFrameCount) {
+  const Playback short_clip = play(300, "/tmp/dcurve_memory_300.dcrv");
+  const Playback long_clip = play(600, "/tmp/dcurve_memory_600.dcrv");
+  const size_t V = kSide * kSide;
+  // The bound dcurve.hpp states for a file read from disk: two decoded chunks of int32
+  // values and the decoding buffers (residual bytes, one frame of predictions, read buffer),
+  // 40 bytes per vertex and chunk frame, plus the shared tables and bookkeeping, 256 bytes
+  // per vertex and 64 KiB.
+  const size_t bound = 40 * V * kChunkFrames + 256 * V + 65536;
+  for (const Playback* p : {&short_clip, &long_clip}) {
+    EXPECT_LE(p->memory_bytes, bound);
+    EXPECT_LE(p->peak_bytes, bound);
+    // What memory_bytes() reports is what the decoder holds: within a quarter of the heap it
+    // holds (bookkeeping aside).
+    EXPECT_GE(p->memory_bytes * 4, p->live_bytes * 3) << p->memory_bytes << " vs live " << p->live_bytes;
+    EXPECT_LE(p->memory_bytes * 3, p->live_bytes * 4) << p->memory_bytes << " vs live " << p->live_bytes;
+  }
+  // Twice the frames: the chunk index grows (a few bytes per chunk), nothing else.
+  EXPECT_LE(long_clip.memory_bytes, short_clip.memory_bytes + 2048);
+  EXPECT_LE(long_clip.peak_bytes, short_clip.peak_bytes + 2048);
+  EXPECT_LT(double(long_clip.memory_bytes), 0.15 * double(long_clip.raw_bytes));
+  std::printf("memory after playback: 300 frames %zu bytes (live %zu, peak %zu), 600 frames %zu bytes (live %zu, "
+              "peak %zu, %.3f of raw)\n",
+              short_clip.memory_bytes, short_clip.live_bytes, short_clip.peak_bytes, long_clip.memory_bytes,
+              long_clip.live_bytes, long_clip.peak_bytes,
+              double(long_clip.memory_bytes) / double(long_clip.raw_bytes));
+}
+
+}  // namespace
+}  // namespace dcurve
