@@ -16,7 +16,7 @@ constexpr uint16_t kFormatVersionMinor = 0;
 
 // Values (floats or grid values) a decoder may build for a file of `file_bytes` bytes:
 // max(2^23, 8192 * file_bytes), the bound that keeps a small hostile file from asking for
-// gigabytes (format_spec/dcrv.md section 13). read_container rejects V * max(F, 1) * 3
+// gigabytes (format_spec/dcrv.md section 15). read_container rejects V * max(F, 1) * 3
 // above it.
 uint64_t decoder_value_budget(size_t file_bytes);
 
@@ -56,8 +56,6 @@ struct ContainerHeader {
 };
 constexpr size_t kContainerHeaderBytes = 28;
 
-// Reads the header fields without checking anything else; false when size < 20 or the
-// magic is wrong. For tools that describe a file that read_container already accepted.
 // Bytes the FACE section takes in the file, its section header included (0 without one):
 // what dropping connectivity would save.
 uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections);
@@ -66,6 +64,8 @@ uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections);
 // model.faces = faces (section header not included): lets an encoder compare face orders.
 uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options = {});
 
+// Reads the header fields without checking anything else; false when size < 24 or the
+// magic is wrong. For tools that describe a file that read_container already accepted.
 bool peek_header(const uint8_t* data, size_t size, ContainerHeader* header);
 
 // Serializes `model` (which must pass validate_model). The RESI section is written only when

@@ -1,5 +1,5 @@
 // The LRNK section: a low-rank (PCA) model of the residual grid that the residual layer's
-// Model predictor uses (format_spec/dcrv.md section 17). Everything a prediction depends on
+// Model predictor uses (format_spec/dcrv.md section 10). Everything a prediction depends on
 // is integer, so encoder and decoder compute bit-identical values on every platform.
 #pragma once
 #include <cstddef>
@@ -56,7 +56,22 @@ inline int64_t round_shift(int64_t x, uint32_t s) {
 // mean and basis are the decoded pseudo-frames (mean first, then K basis vectors, n each,
 // already checked against kMaxLowRankBasis), out receives n values. With poses, each
 // vertex's three posed-space values are mapped by frame f's pose (format_spec/dcrv.md
-// section 17).
-void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_basis, size_t n, int32_t* out);
+// section 10). scratch: n values of working space.
+void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_basis, size_t n, int32_t* out,
+                    int64_t* scratch);
+
+// The decoded mean and basis as a decoder keeps them: the basis in 16 bits when every value
+// fits (half the memory; most files), else in 32.
+struct LowRankTables {
+  std::vector<int32_t> mean;
+  std::vector<int16_t> basis16;
+  std::vector<int32_t> basis32;
+  // From the decoded pseudo-frames: the mean, then the K basis vectors, n values each.
+  void assign(const std::vector<int32_t>& mean_and_basis, size_t n);
+  size_t bytes() const { return mean.capacity() * 4 + basis16.capacity() * 2 + basis32.capacity() * 4; }
+};
+// low_rank_frame from the tables.
+void low_rank_frame(const LowRankModel& lr, uint32_t f, const LowRankTables& tables, size_t n, int32_t* out,
+                    int64_t* scratch);
 
 }  // namespace dcurve

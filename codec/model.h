@@ -84,7 +84,7 @@ struct ResidualLayer {
   uint64_t coded_bytes() const { return payload.size() + external_bytes; }
 };
 
-// A low-rank model of the residual grid (LRNK section, format_spec/dcrv.md section 17): the
+// A low-rank model of the residual grid (LRNK section, format_spec/dcrv.md section 10): the
 // Model predictor of frame f is, per coordinate i = v * 3 + axis, in grid units,
 //   round_shift(mean[i] * 2^(shift - mean_shift) + sum_k coeffs[f * K + k] * basis[k][i], shift).
 // The mean and basis are stored as K + 1 pseudo-frames coded by the residual coder.

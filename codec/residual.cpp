@@ -362,6 +362,13 @@ ResidualPlan single_chunk_plan(const PredictorPlan& plan) {
   return r;
 }
 
+ResidualPlan default_chunked_plan(uint32_t F, uint32_t K) {
+  ResidualPlan r;
+  r.chunk_frames = K;
+  for (uint32_t c = 0; c < chunk_count(F, K); ++c) r.chunks.push_back(default_predictor_plan(chunk_span(F, K, c).count));
+  return r;
+}
+
 std::vector<CodedFrame> coded_frames(const ResidualPlan& plan) {
   std::vector<CodedFrame> out;
   for (size_t c = 0; c < plan.chunks.size(); ++c) {

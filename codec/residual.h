@@ -82,7 +82,6 @@ struct ResidualPlan {
   uint32_t chunk_frames = 0;           // K >= 1
   std::vector<PredictorPlan> chunks;   // one per chunk, chunk-local frame ids
 };
-constexpr uint32_t kMaxChunks = 1u << 24;
 
 inline uint32_t chunk_count(uint32_t frame_count, uint32_t chunk_frames) {
   return chunk_frames == 0 ? 0 : uint32_t((uint64_t(frame_count) + chunk_frames - 1) / chunk_frames);
@@ -99,6 +98,8 @@ inline ChunkSpan chunk_span(uint32_t frame_count, uint32_t chunk_frames, uint32_
 
 // A plan of one chunk holding every frame: what a file without chunking would code.
 ResidualPlan single_chunk_plan(const PredictorPlan& plan);
+// default_predictor_plan in every chunk of K frames.
+ResidualPlan default_chunked_plan(uint32_t frame_count, uint32_t chunk_frames);
 
 // One frame of a ResidualPlan in coding order (chunk after chunk), by its whole-animation
 // id: for reports and rate estimates that look at frames, not chunks.

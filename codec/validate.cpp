@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace dcurve {
@@ -114,6 +115,11 @@ bool validate_model(const Model& m, std::string* error) {
     if (!finite_positive(m.residual.step)) return fail(error, "residual grid step is not a positive number");
     for (double o : m.residual.origin)
       if (!std::isfinite(o)) return fail(error, "residual grid origin is not finite");
+    // Chunks decode when a frame needs them: every int32 grid value must map to a finite
+    // binary32 position, so no chunk can make the output overflow.
+    for (double o : m.residual.origin)
+      if (std::fabs(o) + m.residual.step * 2147483648.0 > double(std::numeric_limits<float>::max()))
+        return fail(error, "residual grid would place grid values outside the float range");
   }
   return true;
 }

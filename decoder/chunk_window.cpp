@@ -24,7 +24,7 @@ ChunkWindow::ChunkWindow(const SharedState& shared) : shared_(shared) {}
 size_t ChunkWindow::memory_bytes() const {
   return sizeof(*this) + workspace_.bytes() + read_buffer_.capacity() +
          (values_.capacity() + kept_.capacity()) * sizeof(int32_t) +
-         (scratch_.capacity() + model_scratch_.capacity()) * sizeof(float);
+         scratch_.capacity() * sizeof(float) + prediction_scratch_.bytes();
 }
 
 bool ChunkWindow::decode_chunk(uint32_t c, Error* error) {
@@ -41,8 +41,7 @@ bool ChunkWindow::decode_chunk(uint32_t c, Error* error) {
   const ChunkSpan span = chunk_span(m.meta.frame_count, shared_.index.chunk_frames, c);
   chunk_ = UINT32_MAX;  // until the decode succeeds
   values_.resize(size_t(span.count) * V * 3);
-  model_scratch_.resize(size_t(V) * 3);
-  ChunkModelFrames model_frames(shared_.predictor, span.first, model_scratch_.data());
+  ChunkModelFrames model_frames(shared_.predictor, span.first, &prediction_scratch_);
   ResidualOptions options;
   options.traversal = &shared_.traversal;
   if (shared_.predictor.active()) options.model_frames = &model_frames;

@@ -52,7 +52,8 @@ class ChunkWindow {
   std::vector<int32_t> kept_;
   ResidualWorkspace workspace_;
   std::vector<uint8_t> read_buffer_;
-  std::vector<float> scratch_, model_scratch_;
+  std::vector<float> scratch_;
+  PredictionScratch prediction_scratch_;
 };
 
 }  // namespace dcurve

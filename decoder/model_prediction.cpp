@@ -46,22 +46,29 @@ bool GridPredictor::build(const Model& model, uint64_t max_values, std::string* 
   model_ = &model;
   active_ = has_model_prediction(model);
   if (!evaluator_.build(model, max_values, error)) return false;
-  return model.low_rank.components == 0 || decode_low_rank_basis(model, max_values, &mean_and_basis_, error);
+  if (model.low_rank.components == 0) return true;
+  std::vector<int32_t> mean_and_basis;
+  if (!decode_low_rank_basis(model, max_values, &mean_and_basis, error)) return false;
+  low_rank_.assign(mean_and_basis, size_t(model.meta.vertex_count) * 3);
+  return true;
 }
 
-void GridPredictor::frame(uint32_t f, int32_t* out, float* scratch) const {
+void GridPredictor::frame(uint32_t f, int32_t* out, PredictionScratch* scratch) const {
   const Model& m = *model_;
   const size_t n = size_t(m.meta.vertex_count) * 3;
   if (m.low_rank.components > 0) {
-    low_rank_frame(m.low_rank, f, mean_and_basis_.data(), n, out);
+    scratch->sum.resize(n);
+    low_rank_frame(m.low_rank, f, low_rank_, n, out, scratch->sum.data());
     return;
   }
-  evaluator_.model_at(evaluator_.locate(double(f)), scratch);
+  scratch->xyz.resize(n);
+  const float* xyz = scratch->xyz.data();
+  evaluator_.model_at(evaluator_.locate(double(f)), scratch->xyz.data());
   // Far outside any sane grid; keeps the residual arithmetic inside int64 on hostile files.
   constexpr double kLimit = double(1 << 30);
   const ResidualLayer& grid = m.residual;
   for (size_t i = 0; i < n; ++i) {
-    const double g = std::nearbyint((double(scratch[i]) - grid.origin[i % 3]) / grid.step);
+    const double g = std::nearbyint((double(xyz[i]) - grid.origin[i % 3]) / grid.step);
     out[i] = int32_t(std::clamp(std::isfinite(g) ? g : 0.0, -kLimit, kLimit));
   }
 }
@@ -73,8 +80,8 @@ bool model_grid_prediction(const Model& model, uint64_t max_values, std::vector<
   if (uint64_t(model.meta.frame_count) * n > max_values)
     return fail(error, "model prediction is implausibly large for the file size");
   out->resize(n * model.meta.frame_count);
-  std::vector<float> scratch(n);
-  for (uint32_t f = 0; f < model.meta.frame_count; ++f) predictor.frame(f, out->data() + f * n, scratch.data());
+  PredictionScratch scratch;
+  for (uint32_t f = 0; f < model.meta.frame_count; ++f) predictor.frame(f, out->data() + f * n, &scratch);
   return true;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "codec/low_rank.h"
 #include "codec/model.h"
 #include "codec/predictors.h"
 #include "frame_evaluator.h"
@@ -20,8 +21,15 @@ bool has_motion_model(const Model& model);
 // low-rank model or a PDE motion model (validate_model forbids both at once).
 bool has_model_prediction(const Model& model);
 
+// Working space of GridPredictor::frame, reused from frame to frame.
+struct PredictionScratch {
+  std::vector<float> xyz;    // PDE model positions
+  std::vector<int64_t> sum;  // low-rank sums
+  size_t bytes() const { return xyz.capacity() * sizeof(float) + sum.capacity() * sizeof(int64_t); }
+};
+
 // The Model predictor one frame at a time. Low-rank: the mean and basis are decoded once
-// (format_spec/dcrv.md section 17) and each frame evaluated in integer arithmetic. PDE: the
+// (format_spec/dcrv.md section 10) and each frame evaluated in integer arithmetic. PDE: the
 // model alone at frame coordinate x = f, rounded to the grid.
 class GridPredictor {
  public:
@@ -29,17 +37,16 @@ class GridPredictor {
   // exceed `max_values` values or the low-rank basis does not decode or is out of range.
   bool build(const Model& model, uint64_t max_values, std::string* error);
   bool active() const { return active_; }
-  // Frame f's V * 3 values (grid units, clamped to +-2^30) into out; scratch: V * 3 floats
-  // (used by PDE models).
-  void frame(uint32_t f, int32_t* out, float* scratch) const;
+  // Frame f's V * 3 values (grid units, clamped to +-2^30) into out.
+  void frame(uint32_t f, int32_t* out, PredictionScratch* scratch) const;
   // The PDE model's evaluator (empty tables for a low-rank model or none).
   const FrameEvaluator& evaluator() const { return evaluator_; }
-  size_t memory_bytes() const { return mean_and_basis_.capacity() * sizeof(int32_t) + evaluator_.memory_bytes(); }
+  size_t memory_bytes() const { return low_rank_.bytes() + evaluator_.memory_bytes(); }
 
  private:
   const Model* model_ = nullptr;
   bool active_ = false;
-  std::vector<int32_t> mean_and_basis_;
+  LowRankTables low_rank_;
   FrameEvaluator evaluator_;
 };
 
@@ -47,14 +54,14 @@ class GridPredictor {
 // f is frame first + f).
 class ChunkModelFrames : public ModelFrameSource {
  public:
-  ChunkModelFrames(const GridPredictor& predictor, uint32_t first, float* scratch)
+  ChunkModelFrames(const GridPredictor& predictor, uint32_t first, PredictionScratch* scratch)
       : predictor_(predictor), first_(first), scratch_(scratch) {}
   void frame(uint32_t f, int32_t* out) const override { predictor_.frame(first_ + f, out, scratch_); }
 
  private:
   const GridPredictor& predictor_;
   uint32_t first_;
-  float* scratch_;
+  PredictionScratch* scratch_;
 };
 
 // The Model predictor of every frame: out[(f * V + v) * 3 + axis]. For encoders, which

@@ -15,6 +15,7 @@
 #include "decoder/model_prediction.h"
 #include "encoder/curves/extract.h"
 #include "encoder/curves/report.h"
+#include "encoder/rate/chunk_choice.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/low_rank_choice.h"
 #include "encoder/rate/motion_alternatives.h"
@@ -258,6 +259,14 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (!have_plain && !encode_plain(anim, opt, start, &m, &residual_only, error)) return false;
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
+  if (opt.chunk_frames == 0) {
+    ResidualOptions ro;
+    ro.weights_source = start.weights;
+    ro.traversal = start.traversal.get();
+    uint64_t bytes = 0;
+    if (!choose_chunk_frames(&m, anim.frames, start.rounded, start.snap, ro, wo, opt.threads, &bytes, error))
+      return false;
+  }
   *out = write_container(m, wo);
   progress(opt.model == ModelChoice::None ? 0.9 : 0.5);
   if (opt.model != ModelChoice::None) {

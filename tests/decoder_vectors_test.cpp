@@ -122,6 +122,14 @@ std::vector<Vector> recipes() {
   point_curves.residual.payload = encode_residuals(point_curves, testing::grid(point_curves.meta.vertex_count, 4));
   v.push_back({"point_curves", point_curves, {}});
 
+  // Chunks of 4 frames (format 3.0): 10 frames in three chunks, the last of 2; segments that
+  // cross chunk boundaries, so the blend between chunks and the model are both exercised.
+  Model chunked = small_model(10, {0, 5, 9});
+  add_pde_motions(&chunked, 7);
+  chunked.residual.payload =
+      encode_residuals(chunked, testing::grid(chunked.meta.vertex_count, 10), default_chunked_plan(10, 4));
+  v.push_back({"chunked", chunked, {}});
+
   Model low_rank_sheet = testing::sheet_model(5, 6);
   low_rank_sheet.faces = traversal_order(low_rank_sheet.faces);
   v.push_back({"low_rank", with_low_rank(low_rank_sheet), {}});

@@ -1,5 +1,5 @@
 // Principal components of an animation on the residual grid, and their quantization into a
-// file's low-rank model (codec/low_rank.h, format_spec/dcrv.md section 17).
+// file's low-rank model (codec/low_rank.h, format_spec/dcrv.md section 10).
 #pragma once
 #include <cstdint>
 #include <vector>

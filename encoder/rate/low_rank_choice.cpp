@@ -275,8 +275,9 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
     // The sampled frames' predictions, from the values the basis payload codes (the full
     // trials decode the payload, as a decoder does).
     std::vector<int32_t> sampled(sample.frames.size() * n), q = sample.rounded;
+    std::vector<int64_t> sums(n);
     for (size_t j = 0; j < sample.frames.size(); ++j)
-      low_rank_frame(trial.low_rank, sample.frames[j], mean_and_basis.data(), n, sampled.data() + j * n);
+      low_rank_frame(trial.low_rank, sample.frames[j], mean_and_basis.data(), n, sampled.data() + j * n, sums.data());
     ResidualOptions ro = shared;
     ro.model_prediction = &sampled;
     const ResidualPlan plan = choose_chunked_plan(sample.model, sample.input, snap_distance, &q, ro, screen);

@@ -1,0 +1,74 @@
+#include "encoder/rate/chunk_choice.h"
+
+#include <algorithm>
+
+#include "codec/error.h"
+#include "codec/residual.h"
+#include "decoder/model_prediction.h"
+#include "encoder/rate/residual_plan.h"
+
+namespace dcurve {
+namespace {
+
+// The candidate lengths for F frames, shortest first: each of kChunkCandidates below F,
+// then F (one chunk).
+std::vector<uint32_t> candidate_lengths(uint32_t F) {
+  std::vector<uint32_t> out;
+  for (uint32_t K : kChunkCandidates)
+    if (K < F) out.push_back(K);
+  out.push_back(F);
+  return out;
+}
+
+// *trial's residual layer coded with chunks of K frames; its file size.
+bool code_with_length(Model* trial, uint32_t K, const std::vector<std::vector<float>>& frames,
+                      const std::vector<int32_t>& rounded, double snap_distance, ResidualOptions ro,
+                      const std::vector<int32_t>* prediction, const WriteOptions& write_options, int threads,
+                      uint64_t* bytes, std::string* error) {
+  trial->residual.chunk_frames = K;
+  ro.model_prediction = prediction;
+  ResidualPlanOptions po;
+  po.threads = threads;
+  std::vector<int32_t> q = rounded;
+  const ResidualPlan plan = choose_chunked_plan(*trial, frames, snap_distance, &q, ro, po);
+  trial->residual.payload = encode_residuals(*trial, q, plan, ro);
+  if (trial->residual.payload.empty()) return fail(error, "internal error: the chunked residual plan is invalid");
+  *bytes = write_container(*trial, write_options).size();
+  return true;
+}
+
+}  // namespace
+
+bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& frames,
+                         const std::vector<int32_t>& rounded, double snap_distance, const ResidualOptions& shared,
+                         const WriteOptions& write_options, int threads, uint64_t* bytes, std::string* error) {
+  const uint32_t F = model->meta.frame_count;
+  std::vector<int32_t> prediction;
+  if (has_model_prediction(*model) && !model_grid_prediction(*model, UINT64_MAX, &prediction, error)) return false;
+  const std::vector<int32_t>* predicted = prediction.empty() ? nullptr : &prediction;
+  const std::vector<uint32_t> lengths = candidate_lengths(F);
+  std::vector<Model> trials(lengths.size());
+  std::vector<uint64_t> sizes(lengths.size());
+  const uint32_t current = std::min(std::max(model->residual.chunk_frames, 1u), F);
+  for (size_t i = 0; i < lengths.size(); ++i) {
+    if (lengths[i] == current) {  // already coded so
+      trials[i] = *model;
+      sizes[i] = write_container(*model, write_options).size();
+      continue;
+    }
+    trials[i] = *model;
+    if (!code_with_length(&trials[i], lengths[i], frames, rounded, snap_distance, shared, predicted, write_options,
+                          threads, &sizes[i], error))
+      return false;
+  }
+  const uint64_t smallest = *std::min_element(sizes.begin(), sizes.end());
+  for (size_t i = 0; i < lengths.size(); ++i)
+    if (double(sizes[i]) <= double(smallest) * (1 + kChunkSlack)) {
+      *model = std::move(trials[i]);
+      *bytes = sizes[i];
+      return true;
+    }
+  return fail(error, "internal error: no chunk length chosen");
+}
+
+}  // namespace dcurve

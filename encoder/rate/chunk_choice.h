@@ -1,0 +1,28 @@
+// The chunk length of the residual layer. A decoder decodes a whole chunk to reach any of
+// its frames and holds one, so short chunks cost less memory and random-access time; they
+// cost bytes (each chunk restarts the coder's statistics and codes its first frame without
+// the frames before it). The encoder codes the final residual layer at each candidate
+// length and keeps the shortest whose file is within kChunkSlack of the smallest.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "codec/container.h"
+#include "codec/model.h"
+#include "codec/predictors.h"
+
+namespace dcurve {
+
+// Lengths tried besides the whole clip (each only when shorter than it).
+constexpr uint32_t kChunkCandidates[] = {16, 32};
+constexpr double kChunkSlack = 0.02;
+
+// Recodes model->residual (its grid, faces, curves and low-rank model kept) at each
+// candidate length from the grid values `rounded` (snapped again within snap_distance of
+// `frames`) and leaves the chosen one in *model. *bytes receives the chosen file's size.
+bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& frames,
+                         const std::vector<int32_t>& rounded, double snap_distance, const ResidualOptions& shared,
+                         const WriteOptions& write_options, int threads, uint64_t* bytes, std::string* error);
+
+}  // namespace dcurve
