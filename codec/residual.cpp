@@ -32,6 +32,30 @@ int magnitude_class(uint32_t m) {
   return m < 3 ? int(m) : m <= 4 ? 3 : m <= 8 ? 4 : 5;
 }
 
+// magnitude_class of the mean |residual| over `count` neighbours rounded up, from their sum:
+// ceil(sum / count) <= k exactly when sum <= k * count, so no division is needed.
+int mean_class(uint32_t sum, uint32_t count) {
+  return sum == 0 ? 0 : sum <= count ? 1 : sum <= 2 * count ? 2 : sum <= 4 * count ? 3 : sum <= 8 * count ? 4 : 5;
+}
+
+// Per axis, the neighbour class of the context (kNeighbourClasses - 1 without earlier
+// neighbours) and the sum of the earlier neighbours' residuals (the sign context): one pass
+// over the neighbours for the three axes.
+void neighbour_contexts(const Traversal& trav, uint32_t pos, const int8_t* rf, int classes[3], int sums[3]) {
+  const uint32_t nb_begin = trav.nb_offsets[pos], nb_end = trav.nb_offsets[pos + 1];
+  uint32_t magnitude[3] = {0, 0, 0};
+  sums[0] = sums[1] = sums[2] = 0;
+  for (uint32_t n = nb_begin; n < nb_end; ++n) {
+    const int8_t* r = rf + size_t(trav.nb[n]) * 3;
+    for (int a = 0; a < 3; ++a) {
+      magnitude[a] += uint32_t(r[a] < 0 ? -r[a] : r[a]);
+      sums[a] += r[a];
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+    classes[a] = nb_begin == nb_end ? kNeighbourClasses - 1 : mean_class(magnitude[a], nb_end - nb_begin);
+}
+
 int sign3(int64_t v) { return v < 0 ? 0 : v == 0 ? 1 : 2; }
 
 // Residuals are kept, clamped to a byte, for the contexts of later vertices and frames.
@@ -149,23 +173,14 @@ bool walk_frames(uint32_t V, const Traversal& trav, PredictorPlan& plan, const R
       };
       for (uint32_t pos = begin; pos < end; ++pos) {
         const uint32_t v = trav.order[pos];
-        const uint32_t nb_begin = trav.nb_offsets[pos], nb_end = trav.nb_offsets[pos + 1];
         uint32_t axis_max = 0;
         int64_t preds[3];
         vertex_prediction(choice, trav, pos, qf, base_of, preds, weights);
+        int nb_classes[3], nb_sums[3];
+        neighbour_contexts(trav, pos, rf, nb_classes, nb_sums);
         for (int a = 0; a < 3; ++a) {
           const int64_t pred = preds[a];
-          int nb_class = kNeighbourClasses - 1;
-          int nb_sum = 0;
-          if (nb_begin != nb_end) {
-            uint32_t sum = 0;
-            for (uint32_t n = nb_begin; n < nb_end; ++n) {
-              const int r = rf[size_t(trav.nb[n]) * 3 + size_t(a)];
-              sum += uint32_t(r < 0 ? -r : r);
-              nb_sum += r;
-            }
-            nb_class = magnitude_class((sum + (nb_end - nb_begin) - 1) / (nb_end - nb_begin));
-          }
+          const int nb_class = nb_classes[a], nb_sum = nb_sums[a];
           const size_t i = size_t(v) * 3 + size_t(a);
           const int t = source[a] ? source[a][i] : 0;
           const int t_class = std::min(magnitude_class(uint32_t(t < 0 ? -t : t)), kTemporalClasses - 1);
