@@ -7,7 +7,7 @@
 #include <cmath>
 #include <memory>
 
-#include "codec/error.h"
+#include "codec/common/error.h"
 
 namespace dcurve::bench {
 namespace {

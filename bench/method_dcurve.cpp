@@ -1,8 +1,8 @@
 // dcurve itself, through the public encoder and the runtime decoder. The file is what a
 // user ships: its own connectivity section included (reported apart).
 #include "bench/baselines.h"
+#include "codec/decompress/container_reader.h"
 #include "decoder/dcurve.hpp"
-#include "codec/container.h"
 #include "encoder/encoder.h"
 #include "encoder/rate/plan_report.h"
 

@@ -19,7 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "codec/model.h"
+#include "codec/common/model.h"
 #include "encoder/io/frames.h"
 
 namespace dcurve {

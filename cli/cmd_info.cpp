@@ -5,9 +5,10 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "codec/container.h"
-#include "codec/low_rank.h"
-#include "codec/residual.h"
+#include "codec/common/container_format.h"
+#include "codec/common/residual.h"
+#include "codec/compress/low_rank_writer.h"
+#include "codec/decompress/container_reader.h"
 #include "encoder/io/files.h"
 #include "encoder/rate/plan_report.h"
 

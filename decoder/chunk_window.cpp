@@ -1,4 +1,5 @@
-#include "codec/crc32.h"
+#include "codec/common/crc32.h"
+#include "codec/decompress/residual_decoder.h"
 #include "decoder_state.h"
 
 namespace dcurve {

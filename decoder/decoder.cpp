@@ -4,9 +4,11 @@
 #include <new>
 #include <vector>
 
-#include "codec/container.h"
-#include "codec/error.h"
-#include "codec/residual.h"
+#include "codec/common/container_format.h"
+#include "codec/common/error.h"
+#include "codec/common/residual.h"
+#include "codec/decompress/container_reader.h"
+#include "codec/decompress/residual_decoder.h"
 #include "decoder_state.h"
 #include "dcurve.hpp"
 
@@ -97,6 +99,9 @@ std::unique_ptr<Decoder> Decoder::open_file(const std::string& path, std::string
   if (status) *status = Status::Ok;
   try {
     FilePtr file(std::fopen(path.c_str(), "rb"));
+    // Unbuffered: every chunk read goes to the file, so a change after opening is seen (a
+    // stdio buffer could still hold a small file's old bytes).
+    if (file) std::setvbuf(file.get(), nullptr, _IONBF, 0);
     if (!file || std::fseek(file.get(), 0, SEEK_END) != 0) {
       open_failed(error, status, Status::Io, path + ": cannot open file");
       return nullptr;

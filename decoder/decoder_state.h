@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "chunk_source.h"
-#include "codec/model.h"
-#include "codec/predictors.h"
-#include "codec/residual.h"
+#include "codec/common/model.h"
+#include "codec/common/predictors.h"
+#include "codec/common/residual.h"
+#include "codec/decompress/model_prediction.h"
 #include "dcurve.hpp"
-#include "model_prediction.h"
 
 namespace dcurve {
 

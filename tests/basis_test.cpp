@@ -1,6 +1,6 @@
-// codec/basis: every function solves its ODE, the stable forms span the papers' raw forms,
+// codec/common/basis: every function solves its ODE, the stable forms span the papers' raw forms,
 // the small-parameter limits are the polynomials, and evaluate_motion combines them as documented.
-#include "codec/basis.h"
+#include "codec/common/basis.h"
 
 #include <gtest/gtest.h>
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "codec/bytes.h"
-#include "codec/crc32.h"
-#include "codec/record_coder.h"
+#include "codec/common/bytes.h"
+#include "codec/common/crc32.h"
+#include "codec/compress/record_writer.h"
 
 namespace dcurve::testing {
 
@@ -83,7 +83,7 @@ inline RawSection plain_section(const std::string& tag, bool required, const std
 }
 
 // The chunk index of a residual payload (format_spec/residual.md), read independently of
-// codec/residual.cpp: where each chunk starts in the payload, its size and where its CRC sits.
+// codec/decompress/residual_decoder.cpp: where each chunk starts in the payload, its size and where its CRC sits.
 struct PayloadChunk {
   size_t start = 0, size = 0, crc_at = 0;
 };

@@ -7,9 +7,14 @@
 #include <filesystem>
 #include <random>
 
-#include "codec/container.h"
-#include "codec/crc32.h"
-#include "codec/faces.h"
+#include "codec/common/container_format.h"
+#include "codec/common/crc32.h"
+#include "codec/common/faces.h"
+#include "codec/compress/container_writer.h"
+#include "codec/compress/faces_encoder.h"
+#include "codec/compress/quantize.h"
+#include "codec/decompress/container_reader.h"
+#include "codec/decompress/faces_decoder.h"
 #include "container_bytes.h"
 #include "encoder/io/frames.h"
 #include "test_models.h"

@@ -5,8 +5,9 @@
 #include <cmath>
 #include <thread>
 
-#include "codec/container.h"
-#include "codec/residual.h"
+#include "codec/compress/container_writer.h"
+#include "codec/decompress/container_reader.h"
+#include "codec/decompress/residual_decoder.h"
 #include "decoder/dcurve.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"
@@ -204,7 +205,7 @@ TEST(DecoderEval, EncodedFramesAreTheQuantizedModelBitExact) {
 }
 
 // PDE segments: the decoder's precomputed tables against the spec's formula evaluated in
-// double with codec/basis.h directly, at frames, between frames and across boundaries.
+// double with codec/common/basis.h directly, at frames, between frames and across boundaries.
 TEST(DecoderEval, PdeSegmentsFollowTheSpecFormula) {
   for (FitMode mode : {FitMode::Absolute, FitMode::Displacement}) {
     Model m = small_model(9, {0, 3, 8});

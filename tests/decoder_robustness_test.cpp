@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "codec/container.h"
+#include "codec/compress/container_writer.h"
 #include "container_bytes.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"

@@ -10,12 +10,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "codec/container.h"
-#include "codec/faces.h"
-#include "codec/low_rank.h"
-#include "codec/residual.h"
+#include "codec/common/low_rank.h"
+#include "codec/common/residual.h"
+#include "codec/compress/container_writer.h"
+#include "codec/compress/faces_encoder.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/decompress/model_prediction.h"
 #include "decoder/dcurve.hpp"
-#include "decoder/model_prediction.h"
 #include "test_models.h"
 
 namespace dcurve {

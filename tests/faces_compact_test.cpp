@@ -6,8 +6,10 @@
 #include <random>
 #include <set>
 
-#include "codec/faces.h"
-#include "codec/id_ranks.h"
+#include "codec/common/faces.h"
+#include "codec/common/id_ranks.h"
+#include "codec/compress/faces_encoder.h"
+#include "codec/decompress/faces_decoder.h"
 #include "encoder/io/frames.h"
 
 namespace dcurve {

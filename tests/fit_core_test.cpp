@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "codec/basis.h"
+#include "codec/common/basis.h"
 #include "encoder/fit/fit.h"
 
 namespace dcurve {

@@ -1,4 +1,4 @@
-// The spatial modes whose weights come from a geometry frame (codec/predictors.h,
+// The spatial modes whose weights come from a geometry frame (codec/common/predictors.h,
 // format_spec/residual.md): Geometric locates a vertex against its parallelogram's
 // triangle, Fit fits an affine function to up to 16 decoded vertices; both predict an affine
 // motion of an irregular mesh where Parallelogram cannot, and a payload naming an unusable
@@ -10,8 +10,11 @@
 #include <random>
 #include <string>
 
-#include "codec/predictors.h"
-#include "codec/residual.h"
+#include "codec/common/predictors.h"
+#include "codec/common/residual.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/compress/residual_values.h"
+#include "codec/decompress/residual_decoder.h"
 #include "container_bytes.h"
 
 namespace dcurve {

@@ -14,7 +14,8 @@
 #include <mutex>
 #include <random>
 
-#include "codec/residual.h"
+#include "codec/common/residual.h"
+#include "codec/compress/residual_encoder.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/plan_steps.h"
 #include "encoder/rate/residual_plan.h"

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <random>
 
-#include "codec/container.h"
+#include "codec/compress/container_writer.h"
+#include "codec/decompress/container_reader.h"
 #include "encoder/encoder.h"
 #include "encoder/metrics.h"
 #include "encoder/rate/grid.h"

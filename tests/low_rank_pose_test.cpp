@@ -5,9 +5,10 @@
 #include <cmath>
 #include <random>
 
-#include "codec/container.h"
-#include "codec/low_rank.h"
-#include "codec/validate.h"
+#include "codec/common/low_rank.h"
+#include "codec/common/validate.h"
+#include "codec/compress/low_rank_writer.h"
+#include "codec/decompress/container_reader.h"
 #include "container_bytes.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"

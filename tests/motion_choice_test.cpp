@@ -5,8 +5,12 @@
 
 #include <random>
 
-#include "codec/container.h"
-#include "decoder/model_prediction.h"
+#include "codec/compress/container_writer.h"
+#include "codec/compress/quantize.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/decompress/container_reader.h"
+#include "codec/decompress/model_prediction.h"
+#include "codec/decompress/residual_decoder.h"
 #include "encoder/encoder.h"
 #include "encoder/rate/motion_alternatives.h"
 #include "encoder/rate/motion_choice.h"

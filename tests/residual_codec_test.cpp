@@ -6,9 +6,14 @@
 #include <cmath>
 #include <random>
 
-#include "codec/container.h"
-#include "codec/int_coder.h"
-#include "codec/residual.h"
+#include "codec/common/int_coder.h"
+#include "codec/common/residual.h"
+#include "codec/compress/container_writer.h"
+#include "codec/compress/range_encoder.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/decompress/container_reader.h"
+#include "codec/decompress/range_decoder.h"
+#include "codec/decompress/residual_decoder.h"
 #include "container_bytes.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"

@@ -7,11 +7,14 @@
 #include <random>
 #include <vector>
 
-#include "codec/basis.h"
-#include "codec/container.h"
-
-#include "codec/model.h"
-#include "codec/residual.h"
+#include "codec/common/basis.h"
+#include "codec/common/model.h"
+#include "codec/common/residual.h"
+#include "codec/compress/container_writer.h"
+#include "codec/compress/quantize.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/decompress/container_reader.h"
+#include "codec/decompress/residual_decoder.h"
 
 namespace dcurve::testing {
 

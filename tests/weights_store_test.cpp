@@ -8,8 +8,10 @@
 #include <thread>
 #include <vector>
 
-#include "codec/predictors.h"
-#include "codec/residual.h"
+#include "codec/common/predictors.h"
+#include "codec/common/residual.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/decompress/residual_decoder.h"
 #include "encoder/rate/weights_store.h"
 #include "test_models.h"
 

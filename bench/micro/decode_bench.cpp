@@ -20,11 +20,14 @@
 #include <map>
 #include <random>
 
-#include "codec/basis.h"
-#include "codec/bytes.h"
-#include "codec/container.h"
-#include "codec/faces.h"
 #include "bench/draco_frame.h"
+#include "codec/common/basis.h"
+#include "codec/common/bytes.h"
+#include "codec/common/faces.h"
+#include "codec/compress/container_writer.h"
+#include "codec/compress/faces_encoder.h"
+#include "codec/compress/quantize.h"
+#include "codec/decompress/container_reader.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"
 #include "encoder/io/frames.h"

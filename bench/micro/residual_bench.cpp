@@ -17,9 +17,11 @@
 #include <map>
 #include <string>
 
-#include "codec/bytes.h"
-#include "codec/container.h"
-#include "codec/residual.h"
+#include "codec/common/bytes.h"
+#include "codec/common/residual.h"
+#include "codec/compress/residual_values.h"
+#include "codec/decompress/container_reader.h"
+#include "codec/decompress/residual_decoder.h"
 #include "encoder/encoder.h"
 #include "encoder/rate/residual_plan.h"
 

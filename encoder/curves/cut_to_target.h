@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "codec/model.h"
+#include "codec/common/model.h"
 
 namespace dcurve {
 namespace curves_detail {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "codec/model.h"
+#include "codec/common/model.h"
 
 namespace dcurve {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "codec/model.h"
+#include "codec/common/model.h"
 #include "encoder/curves/surface_graph.h"
 
 namespace dcurve {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "codec/model.h"
+#include "codec/common/model.h"
 #include "encoder/fit/fit.h"
 #include "encoder/io/frames.h"
 

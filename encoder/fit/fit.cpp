@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "codec/basis.h"
-#include "codec/error.h"
+#include "codec/common/basis.h"
+#include "codec/common/error.h"
 #include "encoder/fit/param_search.h"
 #include "encoder/fit/projection.h"
 #include "encoder/parallel.h"
@@ -39,7 +39,7 @@ bool check_input(const CurveFrames& c, const FitOptions& o, std::string* error) 
   return true;
 }
 
-// The stored motions evaluated through codec/basis on the sample grid, rest and rigid restored.
+// The stored motions evaluated through codec/common/basis on the sample grid, rest and rigid restored.
 void evaluate_on_grid(const CurveFit& fit, const CurveFrames& c, std::vector<double>* out) {
   const size_t P = c.points(), F = c.frames();
   out->resize(P * F * 3);

@@ -1,17 +1,17 @@
-// Fitting one curve's motion with the closed-form PDE bases of codec/basis.h.
+// Fitting one curve's motion with the closed-form PDE bases of codec/common/basis.h.
 //
 // Per axis, w(tau, u) = sum coeffs * T_i(tau) U_j(u): the coefficients are linear least squares
 // (column-scaled SVD of the separable design, never normal equations); the basis case and the
 // two nonlinear parameters are chosen by variable projection: a coarse grid over every case,
 // then Levenberg-Marquardt on (time_param, space_param) for the best cases, minimizing the
 // projected residual. Parameters are rounded to float before the final solve and the error is
-// measured with the float coefficients evaluated through codec/basis: what a decoder would see.
+// measured with the float coefficients evaluated through codec/common/basis: what a decoder would see.
 #pragma once
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "codec/model.h"
+#include "codec/common/model.h"
 #include "encoder/fit/rigid.h"
 
 namespace dcurve {
@@ -52,7 +52,7 @@ struct CurveFit {
   AxisFit axis[3];
   RigidTrack rigid;       // empty keys unless FitOptions::remove_rigid
   FitMode mode = FitMode::Absolute;
-  // Point distances between the input and the stored fit (float motion through codec/basis,
+  // Point distances between the input and the stored fit (float motion through codec/common/basis,
   // rest pose and rigid motion restored) at the fitted frames, model units.
   double rms_error = 0;
   double max_error = 0;

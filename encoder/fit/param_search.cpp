@@ -5,7 +5,7 @@
 #include <limits>
 #include <vector>
 
-#include "codec/basis.h"
+#include "codec/common/basis.h"
 #include "encoder/fit/projection.h"
 
 namespace dcurve {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "codec/basis.h"
+#include "codec/common/basis.h"
 
 namespace dcurve {
 

@@ -6,7 +6,7 @@
 #pragma once
 #include <Eigen/Dense>
 
-#include "codec/model.h"
+#include "codec/common/model.h"
 
 namespace dcurve {
 
@@ -28,7 +28,7 @@ Eigen::MatrixXd time_design(Basis b, int basis_case, double time_param, const Ei
 // Residual W - P_U W P_T as a points*frames vector (column-major), model units.
 Eigen::VectorXd projection_residual(const ScaledRange& space, const ScaledRange& time, const Eigen::MatrixXd& w);
 
-// Least-squares coefficients, laid out as codec/basis.h says: coeffs[i_time * space_count + i_space].
+// Least-squares coefficients, laid out as codec/common/basis.h says: coeffs[i_time * space_count + i_space].
 Eigen::VectorXd solve_coefficients(const ScaledRange& space, const ScaledRange& time, const Eigen::MatrixXd& w);
 
 }  // namespace dcurve

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "codec/error.h"
+#include "codec/common/error.h"
 #include "encoder/io/files.h"
 #include "encoder/io/text_mesh_check.h"
 

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "codec/error.h"
+#include "codec/common/error.h"
 #include "encoder/io/files.h"
 
 namespace dcurve {

@@ -2,9 +2,10 @@
 
 #include <algorithm>
 
-#include "codec/error.h"
-#include "codec/residual.h"
-#include "decoder/model_prediction.h"
+#include "codec/common/error.h"
+#include "codec/common/residual.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/decompress/model_prediction.h"
 #include "encoder/rate/residual_plan.h"
 
 namespace dcurve {

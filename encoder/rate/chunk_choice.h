@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "codec/container.h"
-#include "codec/model.h"
-#include "codec/predictors.h"
+#include "codec/common/model.h"
+#include "codec/common/predictors.h"
+#include "codec/compress/container_writer.h"
 
 namespace dcurve {
 

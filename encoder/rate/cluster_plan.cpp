@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "codec/motion_compensation.h"
+#include "codec/common/motion_compensation.h"
 #include "encoder/rate/plan_steps.h"
 
 namespace dcurve {

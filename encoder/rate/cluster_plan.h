@@ -1,13 +1,13 @@
 // Encoder-side choice of the residual predictors per cluster of vertices: each cluster
 // (a run of cluster_size traversal positions, a patch of the mesh) takes the candidate
 // estimated cheapest for it, including motion-compensated predictions (an affine map of a
-// reference frame per cluster, codec/motion_compensation.h) fitted by least squares.
+// reference frame per cluster, codec/common/motion_compensation.h) fitted by least squares.
 #pragma once
 #include <cstdint>
 #include <vector>
 
-#include "codec/model.h"
-#include "codec/residual.h"
+#include "codec/common/model.h"
+#include "codec/common/residual.h"
 #include "encoder/rate/residual_plan.h"
 
 namespace dcurve {
@@ -31,7 +31,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
                                   uint32_t max_candidates, std::vector<int32_t>* q, const ResidualOptions& options,
                                   const ResidualPlanOptions& po);
 
-// Least-squares affine map (fixed point, codec/motion_compensation.h) taking the reference
+// Least-squares affine map (fixed point, codec/common/motion_compensation.h) taking the reference
 // values `ref` (grid units, v * 3 + axis) of the vertices at traversal positions
 // [begin, end) to their input positions `target` (model units, v * 3 + axis) on layer's grid.
 MotionTransform fit_motion(const ResidualLayer& layer, const float* target, const int32_t* ref, const Traversal& trav,

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "codec/low_rank.h"
+#include "codec/common/low_rank.h"
 
 namespace dcurve {
 namespace {

@@ -9,7 +9,7 @@
 namespace dcurve {
 
 struct FramePoses {
-  // As LowRankModel::poses stores them (kLowRankPoseValues per frame, codec/low_rank.h):
+  // As LowRankModel::poses stores them (kLowRankPoseValues per frame, codec/common/low_rank.h):
   // frame f = pose_centre + t_f + m_f (posed - pose_centre), m_f in units of 2^-16.
   std::vector<int32_t> poses;
   int32_t centre[3] = {0, 0, 0};  // grid units: frame 0's centroid, rounded

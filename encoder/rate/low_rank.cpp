@@ -6,8 +6,9 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "codec/low_rank.h"
-#include "codec/residual.h"
+#include "codec/common/low_rank.h"
+#include "codec/common/residual.h"
+#include "codec/compress/residual_encoder.h"
 #include "encoder/parallel.h"
 
 namespace dcurve {

@@ -1,11 +1,11 @@
 // Principal components of an animation on the residual grid, and their quantization into a
-// file's low-rank model (codec/low_rank.h, format_spec/dcrv.md section 10).
+// file's low-rank model (codec/common/low_rank.h, format_spec/dcrv.md section 10).
 #pragma once
 #include <cstdint>
 #include <vector>
 
-#include "codec/model.h"
-#include "codec/predictors.h"
+#include "codec/common/model.h"
+#include "codec/common/predictors.h"
 
 namespace dcurve {
 

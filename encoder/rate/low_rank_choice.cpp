@@ -4,10 +4,14 @@
 #include <cmath>
 #include <iterator>
 
-#include "codec/error.h"
-#include "codec/low_rank.h"
-#include "codec/residual.h"
-#include "decoder/model_prediction.h"
+#include "codec/common/error.h"
+#include "codec/common/low_rank.h"
+#include "codec/common/residual.h"
+#include "codec/compress/low_rank_writer.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/compress/residual_values.h"
+#include "codec/decompress/model_prediction.h"
+#include "codec/decompress/residual_decoder.h"
 #include "encoder/parallel.h"
 #include "encoder/rate/frame_poses.h"
 #include "encoder/rate/low_rank.h"

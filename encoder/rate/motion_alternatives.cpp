@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "codec/error.h"
-#include "codec/predictors.h"
+#include "codec/common/error.h"
+#include "codec/common/predictors.h"
 #include "encoder/rate/motion_costs.h"
 
 namespace dcurve {

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "codec/error.h"
+#include "codec/common/error.h"
+#include "codec/compress/residual_encoder.h"
 #include "encoder/rate/motion_costs.h"
 
 namespace dcurve {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "codec/model.h"
-#include "codec/residual.h"
+#include "codec/common/model.h"
+#include "codec/common/residual.h"
 #include "encoder/rate/residual_plan.h"
 
 namespace dcurve {

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "codec/container.h"
-#include "codec/error.h"
-#include "decoder/model_prediction.h"
+#include "codec/common/error.h"
+#include "codec/compress/container_writer.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/compress/residual_values.h"
+#include "codec/decompress/container_reader.h"
+#include "codec/decompress/model_prediction.h"
+#include "codec/decompress/residual_decoder.h"
 #include "encoder/rate/plan_steps.h"
 
 namespace dcurve {

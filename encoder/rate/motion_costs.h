@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "codec/model.h"
-#include "codec/residual.h"
+#include "codec/common/model.h"
+#include "codec/common/residual.h"
 
 namespace dcurve {
 

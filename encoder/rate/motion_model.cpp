@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "codec/basis.h"
-#include "codec/container.h"
+#include "codec/common/basis.h"
+#include "codec/common/container_format.h"
+#include "codec/compress/quantize.h"
 #include "encoder/fit/fit.h"
 
 namespace dcurve {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "codec/model.h"
+#include "codec/common/model.h"
 #include "encoder/io/frames.h"
 
 namespace dcurve {

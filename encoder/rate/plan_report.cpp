@@ -4,8 +4,9 @@
 #include <utility>
 #include <vector>
 
-#include "codec/residual.h"
-#include "decoder/model_prediction.h"
+#include "codec/common/residual.h"
+#include "codec/decompress/model_prediction.h"
+#include "codec/decompress/residual_decoder.h"
 
 namespace dcurve {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "codec/model.h"
+#include "codec/common/model.h"
 
 namespace dcurve {
 

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "codec/model.h"
-#include "codec/predictors.h"
+#include "codec/common/model.h"
+#include "codec/common/predictors.h"
 #include "encoder/rate/residual_plan.h"
 
 namespace dcurve {

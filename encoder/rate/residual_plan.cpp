@@ -1,6 +1,7 @@
 #include "encoder/rate/residual_plan.h"
 
-#include "codec/int_coder.h"
+#include "codec/common/int_coder.h"
+#include "codec/compress/residual_encoder.h"
 #include "encoder/parallel.h"
 #include "encoder/rate/cluster_plan.h"
 #include "encoder/rate/plan_steps.h"

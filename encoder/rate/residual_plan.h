@@ -1,11 +1,11 @@
 // Encoder-side choice of the residual predictors: for every frame and axis, the predictor
-// (codec/predictors.h) whose residuals are estimated to cost the fewest bits.
+// (codec/common/predictors.h) whose residuals are estimated to cost the fewest bits.
 #pragma once
 #include <cstdint>
 #include <vector>
 
-#include "codec/model.h"
-#include "codec/residual.h"
+#include "codec/common/model.h"
+#include "codec/common/residual.h"
 
 namespace dcurve {
 

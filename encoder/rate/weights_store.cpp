@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "codec/crc32.h"
+#include "codec/common/crc32.h"
 
 namespace dcurve {
 

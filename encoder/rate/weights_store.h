@@ -9,7 +9,7 @@
 #include <mutex>
 #include <vector>
 
-#include "codec/predictors.h"
+#include "codec/common/predictors.h"
 
 namespace dcurve {
 

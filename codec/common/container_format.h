@@ -1,0 +1,56 @@
+// What the writer and the reader of the .dcrv container share (format_spec/dcrv.md describes
+// every byte): the version, the file header, the section tags and flags, the coefficient
+// range. codec/compress/container_writer.h writes the container,
+// codec/decompress/container_reader.h reads it.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+namespace dcurve {
+
+// Version written by write_container. Readers accept any minor of their major: a newer minor
+// only adds optional sections and hint flags.
+constexpr uint16_t kFormatVersionMajor = 3;
+constexpr uint16_t kFormatVersionMinor = 0;
+
+// The fixed 28-byte file header.
+struct ContainerHeader {
+  uint16_t version_major = 0, version_minor = 0;
+  uint32_t flags = 0;
+  uint32_t section_count = 0;
+  uint64_t head_bytes = 0;  // header and sections: where the chunk data begins
+};
+constexpr size_t kContainerHeaderBytes = 28;
+
+// Range of CurveMotion::coeff_exponent a file may store, and the bound on the stored
+// integers: |k| < 2^kCoeffIntegerBits, so k * 2^exponent is exact in binary32.
+constexpr int kCoeffExponentMin = -100, kCoeffExponentMax = 40, kCoeffIntegerBits = 24;
+
+// The byte layout both sides spell the same way.
+namespace container_format {
+
+constexpr char kMagic[4] = {'D', 'C', 'R', 'V'};
+constexpr size_t kHeaderBytes = kContainerHeaderBytes;
+constexpr uint16_t kSectionRequired = 1;
+constexpr uint16_t kSectionZstd = 2;
+
+inline uint32_t fourcc(const char* s) {
+  return uint32_t(uint8_t(s[0])) | uint32_t(uint8_t(s[1])) << 8 | uint32_t(uint8_t(s[2])) << 16 |
+         uint32_t(uint8_t(s[3])) << 24;
+}
+
+const uint32_t kMeta = fourcc("META");
+const uint32_t kFaces = fourcc("FACE");
+const uint32_t kCurves = fourcc("CURV");
+const uint32_t kSegments = fourcc("SEGS");
+const uint32_t kLowRank = fourcc("LRNK");
+const uint32_t kResidual = fourcc("RESI");
+
+// Curve parameters u as 16-bit fixed point (CURV section).
+inline uint16_t u_to_fixed(float u) { return uint16_t(std::lround(std::clamp(u, 0.f, 1.f) * 65535.f)); }
+inline float u_from_fixed(uint16_t q) { return float(q) / 65535.f; }
+
+}  // namespace container_format
+}  // namespace dcurve

@@ -1,0 +1,356 @@
+#include "codec/common/predictors.h"
+
+#include <algorithm>
+#include <deque>
+
+#include "codec/common/crc32.h"
+
+namespace dcurve {
+namespace {
+
+// Vertex adjacency (each undirected edge once per endpoint), sorted by neighbour id so
+// the traversal is deterministic.
+void adjacency(const std::vector<uint32_t>& faces, uint32_t V, std::vector<uint32_t>* offsets,
+               std::vector<uint32_t>* adj) {
+  std::vector<uint64_t> edges;
+  edges.reserve(faces.size() * 2);
+  for (size_t t = 0; t + 2 < faces.size(); t += 3)
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t a = faces[t + size_t(k)], b = faces[t + size_t((k + 1) % 3)];
+      if (a == b) continue;
+      edges.push_back(a << 32 | b);
+      edges.push_back(b << 32 | a);
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  offsets->assign(size_t(V) + 1, 0);
+  for (uint64_t e : edges) ++(*offsets)[size_t(e >> 32) + 1];
+  for (uint32_t v = 0; v < V; ++v) (*offsets)[v + 1] += (*offsets)[v];
+  adj->resize(edges.size());
+  for (size_t i = 0; i < edges.size(); ++i) (*adj)[i] = uint32_t(edges[i]);
+}
+
+// For every face (v, a, b) whose a and b precede v, and every face (a, b, c) across that
+// edge whose c precedes v: the parallelogram (a, b, c) of v.
+void add_parallelograms(const std::vector<uint32_t>& faces, const std::vector<uint32_t>& pos, Traversal* t) {
+  struct Corner {
+    uint64_t edge;  // (min, max) vertex ids of the edge the corner faces
+    uint32_t vertex;
+  };
+  std::vector<Corner> corners;
+  corners.reserve(faces.size());
+  auto key = [](uint64_t a, uint64_t b) { return a < b ? a << 32 | b : b << 32 | a; };
+  for (size_t f = 0; f + 2 < faces.size(); f += 3)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = faces[f + size_t(k)], a = faces[f + size_t((k + 1) % 3)], b = faces[f + size_t((k + 2) % 3)];
+      corners.push_back({key(a, b), v});
+    }
+  std::sort(corners.begin(), corners.end(),
+            [](const Corner& x, const Corner& y) { return x.edge != y.edge ? x.edge < y.edge : x.vertex < y.vertex; });
+  const uint32_t V = uint32_t(pos.size());
+  std::vector<std::vector<uint32_t>> per_vertex(V);
+  for (size_t i = 0; i < corners.size();) {
+    size_t j = i;
+    while (j < corners.size() && corners[j].edge == corners[i].edge) ++j;
+    const uint32_t a = uint32_t(corners[i].edge >> 32), b = uint32_t(corners[i].edge);
+    for (size_t x = i; x < j; ++x) {
+      const uint32_t v = corners[x].vertex;
+      if (v == a || v == b || pos[a] >= pos[v] || pos[b] >= pos[v]) continue;
+      for (size_t y = i; y < j; ++y) {
+        const uint32_t c = corners[y].vertex;
+        if (c == v || c == a || c == b || pos[c] >= pos[v]) continue;
+        per_vertex[v].insert(per_vertex[v].end(), {a, b, c});
+      }
+    }
+    i = j;
+  }
+  t->para_offsets.assign(size_t(V) + 1, 0);
+  for (uint32_t i = 0; i < V; ++i) {
+    const auto& list = per_vertex[t->order[i]];
+    t->para.insert(t->para.end(), list.begin(), list.end());
+    t->para_offsets[i + 1] = uint32_t(t->para.size() / 3);
+  }
+}
+
+Traversal traversal_from_faces(const Model& m) {
+  const uint32_t V = m.meta.vertex_count;
+  std::vector<uint32_t> off, adj;
+  adjacency(m.faces, V, &off, &adj);
+  Traversal t;
+  t.from_faces = true;
+  t.order.reserve(V);
+  std::vector<uint32_t> pos(V, UINT32_MAX);
+  std::deque<uint32_t> queue;
+  for (uint32_t seed = 0; seed < V; ++seed) {
+    if (pos[seed] != UINT32_MAX) continue;
+    pos[seed] = uint32_t(t.order.size());
+    t.order.push_back(seed);
+    queue.push_back(seed);
+    while (!queue.empty()) {
+      const uint32_t v = queue.front();
+      queue.pop_front();
+      for (uint32_t k = off[v]; k < off[v + 1]; ++k)
+        if (pos[adj[k]] == UINT32_MAX) {
+          pos[adj[k]] = uint32_t(t.order.size());
+          t.order.push_back(adj[k]);
+          queue.push_back(adj[k]);
+        }
+    }
+  }
+  t.nb_offsets.assign(size_t(V) + 1, 0);
+  for (uint32_t i = 0; i < V; ++i) {
+    const uint32_t v = t.order[i];
+    for (uint32_t k = off[v]; k < off[v + 1]; ++k)
+      if (pos[adj[k]] < i) t.nb.push_back(adj[k]);
+    t.nb_offsets[i + 1] = uint32_t(t.nb.size());
+  }
+  add_parallelograms(m.faces, pos, &t);
+  // Fit sets: the earlier neighbours, then the vertices before v adjacent to one of them.
+  t.fit_offsets.assign(size_t(V) + 1, 0);
+  std::vector<uint32_t> ring;
+  for (uint32_t i = 0; i < V; ++i) {
+    const uint32_t v = t.order[i], nb_begin = t.nb_offsets[i], nb_end = t.nb_offsets[i + 1];
+    const auto is_nb = [&](uint32_t w) { return std::binary_search(t.nb.begin() + nb_begin, t.nb.begin() + nb_end, w); };
+    ring.clear();
+    for (uint32_t k = nb_begin; k < nb_end; ++k)
+      for (uint32_t j = off[t.nb[k]]; j < off[t.nb[k] + 1]; ++j)
+        if (pos[adj[j]] < i && adj[j] != v && !is_nb(adj[j])) ring.push_back(adj[j]);
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    t.fit.insert(t.fit.end(), t.nb.begin() + nb_begin, t.nb.begin() + nb_end);
+    t.fit.insert(t.fit.end(), ring.begin(), ring.end());
+    t.fit.resize(std::min<size_t>(t.fit.size(), t.fit_offsets[i] + kMaxFitPoints));
+    t.fit_offsets[i + 1] = uint32_t(t.fit.size());
+  }
+  return t;
+}
+
+Traversal traversal_from_curves(const Model& m) {
+  Traversal t;
+  const Curves& c = m.curves;
+  t.order = c.vertices;
+  t.nb_offsets.assign(t.order.size() + 1, 0);
+  t.para_offsets.assign(t.order.size() + 1, 0);
+  t.fit_offsets.assign(t.order.size() + 1, 0);
+  for (uint32_t k = 0; k < c.curve_count(); ++k)
+    for (uint32_t i = c.offsets[k]; i < c.offsets[k + 1]; ++i) {
+      if (i > c.offsets[k]) t.nb.push_back(c.vertices[i - 1]);
+      if (i > c.offsets[k] + 1) t.para.insert(t.para.end(), {c.vertices[i - 1], c.vertices[i - 1], c.vertices[i - 2]});
+      // A curve vertex's neighbours are the previous and next ones: the Fit set is (p1, p2).
+      for (uint32_t back = 1; back <= 2 && i >= c.offsets[k] + back; ++back) t.fit.push_back(c.vertices[i - back]);
+      t.nb_offsets[i + 1] = uint32_t(t.nb.size());
+      t.para_offsets[i + 1] = uint32_t(t.para.size() / 3);
+      t.fit_offsets[i + 1] = uint32_t(t.fit.size());
+    }
+  return t;
+}
+
+}  // namespace
+
+Traversal build_traversal(const Model& model) {
+  return model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);
+}
+
+const Traversal& traversal_for(const Model& model, const ResidualOptions& options, Traversal* owned) {
+  if (options.traversal) return *options.traversal;
+  *owned = build_traversal(model);
+  // Only walks that share tables need the mesh told apart; a decoder's never do.
+  if (options.weights_source) {
+    uint32_t crc = 0;
+    for (const std::vector<uint32_t>* a :
+         {&owned->order, &owned->nb_offsets, &owned->nb, &owned->para_offsets, &owned->para, &owned->fit_offsets, &owned->fit})
+      crc = crc32c(a->data(), a->size() * sizeof(uint32_t), crc);
+    owned->fingerprint = crc | 1;  // never 0
+  }
+  return *owned;
+}
+
+namespace {
+// x / 2^s rounded down (also for negative x).
+int64_t floor_shift(int64_t x, int s) { return x >= 0 ? x >> s : -((-x + (int64_t(1) << s) - 1) >> s); }
+
+int32_t clamp_weight(int64_t w) { return int32_t(std::clamp<int64_t>(w, -kGeometricLimit, kGeometricLimit)); }
+
+// Least-squares (alpha, beta) with v - a = alpha (b - a) + beta (c - a) in the geometry
+// frame. The differences are scaled to 12 bits first, so every product fits in int64.
+void triple_weights(const int32_t* qg, uint32_t v, uint32_t a, uint32_t b, uint32_t c, int32_t* w) {
+  int64_t d1[3], d2[3], x[3], m = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int64_t ga = qg[size_t(a) * 3 + size_t(k)];
+    d1[k] = qg[size_t(b) * 3 + size_t(k)] - ga;
+    d2[k] = qg[size_t(c) * 3 + size_t(k)] - ga;
+    x[k] = qg[size_t(v) * 3 + size_t(k)] - ga;
+    m = std::max({m, d1[k] < 0 ? -d1[k] : d1[k], d2[k] < 0 ? -d2[k] : d2[k], x[k] < 0 ? -x[k] : x[k]});
+  }
+  int s = 0;
+  while ((m >> s) > 4095) ++s;
+  int64_t g11 = 0, g12 = 0, g22 = 0, r1 = 0, r2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int64_t p = floor_shift(d1[k], s), q = floor_shift(d2[k], s), y = floor_shift(x[k], s);
+    g11 += p * p;
+    g12 += p * q;
+    g22 += q * q;
+    r1 += p * y;
+    r2 += q * y;
+  }
+  const int64_t det = g11 * g22 - g12 * g12;
+  if (det <= 0) {  // a degenerate triangle (or a curve's (p1, p1, p2)): the plain parallelogram
+    w[0] = kGeometricUnit;
+    w[1] = -kGeometricUnit;
+    return;
+  }
+  w[0] = clamp_weight(detail::rounded_mean(kGeometricUnit * (g22 * r1 - g12 * r2), det));
+  w[1] = clamp_weight(detail::rounded_mean(kGeometricUnit * (g11 * r2 - g12 * r1), det));
+}
+
+int bit_length(int64_t x) {
+  int b = 0;
+  while (b < 63 && (x >> b) != 0) ++b;
+  return b;
+}
+
+// Fit weights of one position: the affine function c + g . (x - x_v) fitted by least squares
+// (ridge 16 on g, so flat and collinear sets stay solvable) to the set's values is, at v, the
+// constant c = sum_j w_j value_j with w_j = (det - t . d_j) / (n det - t . s), where d_j are
+// the offsets to v scaled to 7 bits, s their sum, C = sum d_j d_j^T + 16 I, det = det C and
+// t = adj(C) s. With |d| <= 128 and n <= 16 every product below stays under 2^63.
+void position_fit_weights(const int32_t* qg, uint32_t v, const uint32_t* set, uint32_t n, int32_t* w) {
+  std::fill(w, w + n, 0);
+  if (n < 2) return;
+  int64_t d[kMaxFitPoints][3], m = 0;
+  for (uint32_t j = 0; j < n; ++j)
+    for (int k = 0; k < 3; ++k) {
+      d[j][k] = int64_t(qg[size_t(set[j]) * 3 + size_t(k)]) - qg[size_t(v) * 3 + size_t(k)];
+      m = std::max(m, d[j][k] < 0 ? -d[j][k] : d[j][k]);
+    }
+  int shift = 0;
+  while ((m >> shift) > 127) ++shift;
+  int64_t sum[3] = {0, 0, 0}, c[3][3] = {{16, 0, 0}, {0, 16, 0}, {0, 0, 16}};
+  for (uint32_t j = 0; j < n; ++j) {
+    for (int k = 0; k < 3; ++k) d[j][k] = floor_shift(d[j][k], shift);
+    for (int k = 0; k < 3; ++k) {
+      sum[k] += d[j][k];
+      for (int l = 0; l < 3; ++l) c[k][l] += d[j][k] * d[j][l];
+    }
+  }
+  const int64_t adj[3][3] = {
+      {c[1][1] * c[2][2] - c[1][2] * c[2][1], c[0][2] * c[2][1] - c[0][1] * c[2][2], c[0][1] * c[1][2] - c[0][2] * c[1][1]},
+      {c[1][2] * c[2][0] - c[1][0] * c[2][2], c[0][0] * c[2][2] - c[0][2] * c[2][0], c[0][2] * c[1][0] - c[0][0] * c[1][2]},
+      {c[1][0] * c[2][1] - c[1][1] * c[2][0], c[0][1] * c[2][0] - c[0][0] * c[2][1], c[0][0] * c[1][1] - c[0][1] * c[1][0]}};
+  const int64_t det = c[0][0] * adj[0][0] + c[0][1] * adj[1][0] + c[0][2] * adj[2][0];
+  int64_t tv[3], ts = 0;
+  for (int k = 0; k < 3; ++k) {
+    tv[k] = adj[k][0] * sum[0] + adj[k][1] * sum[1] + adj[k][2] * sum[2];
+    ts += tv[k] * sum[k];
+  }
+  const int64_t den = int64_t(n) * det - ts;
+  if (den <= 0) return;  // cannot happen (C exceeds sum d d^T), but no division by it then
+  const int scale = std::max(0, bit_length(den) - 30);
+  const int64_t den_scaled = floor_shift(den, scale);
+  for (uint32_t j = 1; j < n; ++j) {
+    const int64_t num = det - (tv[0] * d[j][0] + tv[1] * d[j][1] + tv[2] * d[j][2]);
+    const int64_t num_scaled = std::clamp<int64_t>(floor_shift(num, scale), -(int64_t(1) << 40), int64_t(1) << 40);
+    w[j] = int32_t(std::clamp(detail::rounded_mean(num_scaled * kFitUnit, den_scaled), -kFitLimit, kFitLimit));
+  }
+}
+}  // namespace
+
+std::vector<int32_t> fit_weights(const Traversal& t, const int32_t* qg) {
+  std::vector<int32_t> w(t.fit.size());
+  for (uint32_t pos = 0; pos + 1 < uint32_t(t.fit_offsets.size()); ++pos)
+    position_fit_weights(qg, t.order[pos], &t.fit[t.fit_offsets[pos]], t.fit_offsets[pos + 1] - t.fit_offsets[pos],
+                         &w[t.fit_offsets[pos]]);
+  return w;
+}
+
+std::vector<int32_t> spatial_weights(const Traversal& t, const int32_t* qg, SpatialMode mode) {
+  if (mode == SpatialMode::Geometric) return geometric_weights(t, qg);
+  if (mode == SpatialMode::Fit) return fit_weights(t, qg);
+  return {};
+}
+
+std::vector<int32_t> geometric_weights(const Traversal& t, const int32_t* qg) {
+  std::vector<int32_t> w(t.para.size() / 3 * 2);
+  for (uint32_t pos = 0; pos + 1 < uint32_t(t.para_offsets.size()); ++pos)
+    for (uint32_t k = t.para_offsets[pos]; k < t.para_offsets[pos + 1]; ++k)
+      triple_weights(qg, t.order[pos], t.para[3 * size_t(k)], t.para[3 * size_t(k) + 1], t.para[3 * size_t(k) + 2],
+                     &w[2 * size_t(k)]);
+  return w;
+}
+
+const int32_t* SpatialWeightsCache::get(const Traversal& t, const int32_t* q, uint32_t g, SpatialMode mode) {
+  // Least recently used goes first, so the (up to three) frames one cluster asked for last
+  // stay valid while it asks for another.
+  size_t i = 0;
+  while (i < entries_.size() && entries_[i].g != g) ++i;
+  if (i < entries_.size()) {
+    std::rotate(entries_.begin() + std::ptrdiff_t(i), entries_.begin() + std::ptrdiff_t(i) + 1, entries_.end());
+  } else {
+    if (entries_.size() >= kCapacity) entries_.erase(entries_.begin());
+    entries_.push_back({g, {}});
+  }
+  Entry& e = entries_.back();
+  const bool fit = mode == SpatialMode::Fit;
+  if (!e.tables[fit]) {
+    const int32_t* qg = q + size_t(g) * t.order.size() * 3;
+    e.tables[fit] = source_ ? source_->weights(t, qg, mode)
+                            : std::make_shared<const std::vector<int32_t>>(spatial_weights(t, qg, mode));
+  }
+  return e.tables[fit]->data();
+}
+
+void SpatialWeightsCache::for_choice(const Traversal& t, const int32_t* q, const PredictorChoice* choice,
+                                       const int32_t* out[3]) {
+  for (int a = 0; a < 3; ++a)
+    out[a] = uses_geometry(choice[a].spatial) ? get(t, q, choice[a].g, choice[a].spatial) : nullptr;
+}
+
+bool predictor_usable(const PredictorChoice& c, uint32_t f, const std::vector<uint8_t>& decoded,
+                      const ResidualOptions& options) {
+  auto ok = [&](uint32_t r) { return r < decoded.size() && r != f && decoded[r]; };
+  if (uses_geometry(c.spatial) && !ok(c.g)) return false;
+  auto near = [](uint32_t a, uint32_t b) { return (a > b ? a - b : b - a) <= kMaxLinearSpan; };
+  switch (c.kind) {
+    case PredictorKind::None: return true;
+    case PredictorKind::Reference: return ok(c.r0);
+    case PredictorKind::Linear:
+      return ok(c.r0) && ok(c.r1) && c.r0 != c.r1 && near(c.r0, f) && near(c.r1, c.r0);
+    case PredictorKind::Model: return options.model_prediction != nullptr || options.model_frames != nullptr;
+    case PredictorKind::Motion: return ok(c.r0);
+  }
+  return false;
+}
+
+void base_prediction(const PredictorChoice& c, uint32_t f, int axis, uint32_t V, const int32_t* q,
+                     const ResidualOptions& options, int64_t* base) {
+  const size_t stride = size_t(V) * 3, a = size_t(axis);
+  switch (c.kind) {
+    case PredictorKind::None:
+      std::fill(base, base + V, int64_t(0));
+      return;
+    case PredictorKind::Reference:
+    case PredictorKind::Motion: {
+      const int32_t* r = q + size_t(c.r0) * stride;
+      for (uint32_t v = 0; v < V; ++v) base[v] = r[size_t(v) * 3 + a];
+      return;
+    }
+    case PredictorKind::Linear: {
+      const int32_t* p0 = q + size_t(c.r0) * stride;
+      const int32_t* p1 = q + size_t(c.r1) * stride;
+      int64_t t = int64_t(f) - int64_t(c.r0), span = int64_t(c.r1) - int64_t(c.r0);
+      if (span < 0) { span = -span; t = -t; }
+      for (uint32_t v = 0; v < V; ++v) {
+        const int64_t y0 = p0[size_t(v) * 3 + a], y1 = p1[size_t(v) * 3 + a];
+        base[v] = y0 + detail::rounded_mean((y1 - y0) * t, span);
+      }
+      return;
+    }
+    case PredictorKind::Model: {
+      const int32_t* mp = options.model_prediction->data() + size_t(f) * stride;
+      for (uint32_t v = 0; v < V; ++v) base[v] = mp[size_t(v) * 3 + a];
+      return;
+    }
+  }
+}
+
+}  // namespace dcurve

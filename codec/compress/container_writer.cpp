@@ -1,0 +1,195 @@
+#include "codec/compress/container_writer.h"
+
+#include <zstd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "codec/common/bytes.h"
+#include "codec/common/crc32.h"
+#include "codec/common/residual.h"
+#include "codec/compress/faces_encoder.h"
+#include "codec/compress/low_rank_writer.h"
+#include "codec/decompress/faces_decoder.h"
+#include "codec/decompress/residual_decoder.h"
+
+namespace dcurve {
+namespace {
+
+using container_format::kCurves;
+using container_format::kFaces;
+using container_format::kHeaderBytes;
+using container_format::kLowRank;
+using container_format::kMagic;
+using container_format::kMeta;
+using container_format::kResidual;
+using container_format::kSectionRequired;
+using container_format::kSectionZstd;
+using container_format::kSegments;
+using container_format::u_to_fixed;
+
+// The bytes a section stores: zstd when that is smaller, else the raw bytes.
+std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, bool* compressed) {
+  std::vector<uint8_t> stored(ZSTD_compressBound(raw.size()));
+  size_t n = ZSTD_compress(stored.data(), stored.size(), raw.data(), raw.size(), level);
+  *compressed = !ZSTD_isError(n) && n < raw.size();
+  if (*compressed) stored.resize(n); else stored = raw;
+  return stored;
+}
+
+std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
+  using Layout = WriteOptions::FaceLayout;
+  std::vector<uint8_t> best = encode_faces(faces, FaceOrder::Exact);
+  if (options.face_layout == Layout::Exact) return best;
+  bool unused;
+  auto stored_size = [&](const std::vector<uint8_t>& raw) { return stored_form(raw, options.zstd_level, &unused).size(); };
+  auto consider = [&](std::vector<uint8_t> raw, Layout layout) {
+    if (options.face_layout == layout || (options.face_layout == Layout::Smallest && stored_size(raw) < stored_size(best)))
+      best = std::move(raw);
+  };
+  // Compact reproduces any list exactly (encode_faces falls back to Exact beyond its bound).
+  consider(encode_faces(faces, FaceOrder::Compact), Layout::Compact);
+  // Traversal may reorder triangles, and other parts of the file (the residual coder's
+  // neighbours) were built on model.faces: a candidate only when it gives them back as is.
+  std::vector<uint8_t> traversal = encode_faces(faces, FaceOrder::Traversal);
+  std::vector<uint32_t> back;
+  if (decode_faces(traversal.data(), traversal.size(), &back, nullptr) && back == faces)
+    consider(std::move(traversal), Layout::Traversal);
+  return best;
+}
+
+// A section header: tag, u8 flags, varint stored
+// size, varint raw size only when compressed, CRC.
+void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
+                 int level) {
+  bool compressed = false;
+  std::vector<uint8_t> stored = stored_form(raw, level, &compressed);
+  const size_t header_at = out.size();
+  out.u32(tag);
+  out.u8(uint8_t((required ? kSectionRequired : 0) | (compressed ? kSectionZstd : 0)));
+  out.varint(stored.size());
+  if (compressed) out.varint(raw.size());
+  // The checksum covers the section header too: a flipped tag or flag must not turn a
+  // section into an unknown optional one that a reader would silently skip.
+  uint32_t crc = crc32c(out.data().data() + header_at, out.size() - header_at);
+  out.u32(crc32c(stored.data(), stored.size(), crc));
+  out.bytes(stored.data(), stored.size());
+}
+
+std::vector<uint8_t> meta_bytes(const Model& m) {
+  ByteWriter w;
+  w.u32(m.meta.vertex_count);
+  w.u32(m.meta.frame_count);
+  w.f64(m.meta.frame_rate);
+  w.f64(m.meta.tolerance);
+  w.f64(m.meta.diag);
+  w.str(m.meta.units);
+  return std::move(w.data());
+}
+
+std::vector<uint8_t> curve_bytes(const Model& m) {
+  ByteWriter w;
+  const Curves& c = m.curves;
+  w.u32(c.curve_count());
+  for (uint32_t i = 0; i < c.curve_count(); ++i) w.varint(uint64_t(c.offsets[i + 1] - c.offsets[i]) << 1 | c.closed[i]);
+  int64_t prev = 0;
+  for (uint32_t v : c.vertices) {
+    w.varint(zigzag_encode(int64_t(v) - prev));
+    prev = v;
+  }
+  // u as 16-bit fixed point: 1/65535 of a curve is far below any tolerance the fit sees.
+  for (float u : c.u) w.u16(u_to_fixed(u));
+  return std::move(w.data());
+}
+
+// One SEGS motion record (dcrv.md section 8).
+void write_motion(ByteWriter& w, const CurveMotion& cm) {
+  w.u8(uint8_t(cm.basis));
+  if (cm.basis == Basis::Zero) return;
+  w.u8(cm.basis_case);
+  w.f32(cm.time_param);
+  w.f32(cm.space_param);
+  w.u8(uint8_t(cm.coeff_exponent));
+  // Exact for quantized coefficients (validate_model checks that they are).
+  for (float c : cm.coeffs) w.varint(zigzag_encode(int64_t(std::ldexp(double(c), -cm.coeff_exponent))));
+}
+
+std::vector<uint8_t> segment_bytes(const Model& m) {
+  ByteWriter w;
+  w.u32(uint32_t(m.segments.size()));
+  for (const Segment& s : m.segments) {
+    w.u32(s.first_frame);
+    w.u32(s.last_frame);
+    w.u8(uint8_t(s.mode));
+    for (const CurveMotion& cm : s.motion) write_motion(w, cm);
+  }
+  return std::move(w.data());
+}
+
+
+// Bytes of the residual payload's header and chunk index: what RESI holds (the chunks
+// follow the sections). The payload is the writer's own, so its index reads.
+size_t residual_index_bytes(const Model& m) {
+  const std::vector<uint8_t>& p = m.residual.payload;
+  ResidualIndex index;
+  const bool faces = p.size() > 1 && p[1] != 0;
+  return read_residual_index(p.data(), p.size(), m.meta.frame_count, faces, UINT64_MAX, &index, nullptr)
+             ? index.index_bytes
+             : p.size();
+}
+
+std::vector<uint8_t> residual_bytes(const Model& m, size_t index_bytes) {
+  ByteWriter w;
+  w.f64(m.residual.step);
+  for (double o : m.residual.origin) w.f64(o);
+  w.bytes(m.residual.payload.data(), index_bytes);
+  return std::move(w.data());
+}
+
+}  // namespace
+
+size_t motion_record_size(const CurveMotion& m) {
+  ByteWriter w;
+  write_motion(w, m);
+  return w.data().size();
+}
+
+std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options) {
+  std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;
+  sections.emplace_back(kMeta, meta_bytes(model));
+  if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model.faces, options));
+  // The common case of neither curves nor segments costs no section at all.
+  if (!is_singleton_curves(model.curves, model.meta.vertex_count)) sections.emplace_back(kCurves, curve_bytes(model));
+  if (!model.segments.empty()) sections.emplace_back(kSegments, segment_bytes(model));
+  if (model.low_rank.components > 0) sections.emplace_back(kLowRank, low_rank_bytes(model));
+  size_t index_bytes = 0;
+  if (model.residual.step > 0) {
+    index_bytes = residual_index_bytes(model);
+    sections.emplace_back(kResidual, residual_bytes(model, index_bytes));
+  }
+
+  ByteWriter body;
+  for (const auto& [tag, raw] : sections) put_section(body, tag, tag != kFaces, raw, options.zstd_level);
+  ByteWriter out;
+  out.bytes(kMagic, 4);
+  out.u16(kFormatVersionMajor);
+  out.u16(kFormatVersionMinor);
+  out.u32(0);
+  out.u32(uint32_t(sections.size()));
+  out.u64(kHeaderBytes + body.size());
+  out.u32(crc32c(out.data().data(), kHeaderBytes - 4));
+  out.bytes(body.data().data(), body.size());
+  // The chunks follow the sections, each checked by its own CRC in the RESI index, so a
+  // reader can leave them in the file until a frame needs them.
+  if (model.residual.step > 0)
+    out.bytes(model.residual.payload.data() + index_bytes, model.residual.payload.size() - index_bytes);
+  return std::move(out.data());
+}
+
+uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
+  bool unused;
+  return stored_form(face_bytes(faces, options), options.zstd_level, &unused).size();
+}
+
+}  // namespace dcurve

@@ -1,0 +1,78 @@
+#include "codec/compress/low_rank_writer.h"
+
+#include <algorithm>
+
+#include "codec/common/bytes.h"
+#include "codec/common/int_coder.h"
+#include "codec/common/low_rank.h"
+#include "codec/common/low_rank_format.h"
+#include "codec/compress/range_encoder.h"
+
+namespace dcurve {
+namespace {
+using low_rank_format::coeff_context;
+using low_rank_format::difference;
+using low_rank_format::kCoeffContexts;
+using low_rank_format::kCoeffShifts;
+using low_rank_format::kPosed;
+using low_rank_format::kRangeCoded;
+using low_rank_format::range_count_plausible;
+
+std::vector<uint8_t> range_coded_differences(const std::vector<int32_t>& stored, size_t K, bool contexts) {
+  RangeEncoder enc;
+  AdaptiveIntCoder coder(contexts ? kCoeffContexts : 1, 1);
+  for (size_t i = 0; i < stored.size(); ++i)
+    coder.encode(enc, contexts ? coeff_context(stored, i, K) : 0, 0, difference(stored, i, K));
+  return enc.finish();
+}
+
+bool has_coeff_shifts(const LowRankModel& lr) {
+  return std::any_of(lr.coeff_shifts.begin(), lr.coeff_shifts.end(), [](uint8_t s) { return s > 0; });
+}
+}  // namespace
+
+std::vector<uint8_t> low_rank_bytes(const Model& m) {
+  const LowRankModel& lr = m.low_rank;
+  const size_t K = lr.components;
+  const bool shifted = has_coeff_shifts(lr);
+  // The coefficients as stored: divided by their component's 2^shift (exact by contract).
+  std::vector<int32_t> stored = lr.coeffs;
+  if (shifted)
+    for (size_t i = 0; i < stored.size(); ++i)
+      stored[i] = int32_t(int64_t(stored[i]) / (int64_t(1) << lr.coeff_shifts[i % K]));
+  // Svarints, or the adaptive range coder when that is smaller: the differences of one
+  // file have similar magnitudes, which a varint's fixed 7-bit groups do not exploit.
+  ByteWriter varints;
+  for (size_t i = 0; i < stored.size(); ++i) varints.varint(zigzag_encode(difference(stored, i, K)));
+  const std::vector<uint8_t> stream = range_coded_differences(stored, K, shifted);
+  ByteWriter sized;
+  sized.varint(stream.size());
+  const bool ranged = range_count_plausible(stored.size(), stream.size()) &&
+                      sized.size() + stream.size() < varints.size();
+  ByteWriter w;
+  w.u8(uint8_t(lr.components | (ranged ? kRangeCoded : 0)));
+  w.u8(uint8_t(lr.shift));
+  const bool posed = !lr.poses.empty();
+  w.u8(uint8_t(lr.mean_shift | (shifted ? kCoeffShifts : 0) | (posed ? kPosed : 0)));
+  if (shifted)
+    for (uint8_t s : lr.coeff_shifts) w.u8(s);
+  if (ranged) {
+    w.varint(stream.size());
+    w.bytes(stream.data(), stream.size());
+  } else {
+    w.bytes(varints.data().data(), varints.size());
+  }
+  w.varint(lr.basis_payload.size());
+  w.bytes(lr.basis_payload.data(), lr.basis_payload.size());
+  if (posed) {
+    // Poses move smoothly from frame to frame, as coefficients do: the same extrapolation
+    // and the same range coder, one "component" per pose value.
+    for (int32_t c : lr.pose_centre) w.varint(zigzag_encode(c));
+    const std::vector<uint8_t> poses = range_coded_differences(lr.poses, kLowRankPoseValues, true);
+    w.varint(poses.size());
+    w.bytes(poses.data(), poses.size());
+  }
+  return std::move(w.data());
+}
+
+}  // namespace dcurve
