@@ -7,14 +7,19 @@ namespace {
 // acc[i] += c * b[i]: the low-rank prediction's inner loop, most of a low-rank file's decode.
 // Built twice on x86-64 (AVX2 and baseline), picked at load time: AVX2 does four of the
 // widening 32 x 32 -> 64-bit products at once. Integer arithmetic, so both give the same sums.
-#if defined(__x86_64__) && defined(__GNUC__) && defined(__linux__)
+// GCC only, not under the sanitizers (whose runtimes and load-time resolvers do not mix).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && defined(__linux__) && \
+    !defined(__SANITIZE_ADDRESS__)
 #define DCURVE_MULTIVERSION __attribute__((target_clones("avx2", "default")))
 #else
 #define DCURVE_MULTIVERSION
 #endif
-template <class Basis>
-DCURVE_MULTIVERSION void multiply_add(int64_t* acc, int32_t c, const Basis* b, size_t n) {
-  for (size_t i = 0; i < n; ++i) acc[i] += int64_t(c) * int64_t(int32_t(b[i]));
+// Two plain functions, not a template: clang accepts target_clones on functions only.
+DCURVE_MULTIVERSION void multiply_add(int64_t* acc, int32_t c, const int16_t* b, size_t n) {
+  for (size_t i = 0; i < n; ++i) acc[i] += int64_t(c) * int64_t(b[i]);
+}
+DCURVE_MULTIVERSION void multiply_add(int64_t* acc, int32_t c, const int32_t* b, size_t n) {
+  for (size_t i = 0; i < n; ++i) acc[i] += int64_t(c) * int64_t(b[i]);
 }
 
 template <class Basis>

@@ -17,17 +17,7 @@
 namespace dcurve {
 namespace {
 
-using container_format::kCurves;
-using container_format::kFaces;
-using container_format::kHeaderBytes;
-using container_format::kLowRank;
-using container_format::kMagic;
-using container_format::kMeta;
-using container_format::kResidual;
-using container_format::kSectionRequired;
-using container_format::kSectionZstd;
-using container_format::kSegments;
-using container_format::u_to_fixed;
+using namespace container_format;  // what both sides of the format share
 
 // The bytes a section stores: zstd when that is smaller, else the raw bytes.
 std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, bool* compressed) {

@@ -10,16 +10,7 @@
 namespace dcurve {
 namespace {
 
-using residual_walk::index_bits;
-using residual_walk::kContexts;
-using residual_walk::kFormatVersion;
-using residual_walk::kSignContexts;
-using residual_walk::kSpatialShift;
-using residual_walk::options_for_chunk;
-using residual_walk::param_context;
-using residual_walk::SideModels;
-using residual_walk::values_checksum;
-using residual_walk::walk_frames;
+using namespace residual_walk;  // what both sides of the format share
 
 // The coder walk_frames drives to write the range-coded stream.
 struct StreamWriter {

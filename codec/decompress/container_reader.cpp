@@ -19,17 +19,7 @@
 namespace dcurve {
 namespace {
 
-using container_format::kCurves;
-using container_format::kFaces;
-using container_format::kHeaderBytes;
-using container_format::kLowRank;
-using container_format::kMagic;
-using container_format::kMeta;
-using container_format::kResidual;
-using container_format::kSectionRequired;
-using container_format::kSectionZstd;
-using container_format::kSegments;
-using container_format::u_from_fixed;
+using namespace container_format;  // what both sides of the format share
 
 constexpr uint16_t kSectionKnownFlags = kSectionRequired | kSectionZstd;
 // File flags: the low 16 bits name features a reader must understand (none in 3.0), the

@@ -11,16 +11,7 @@
 namespace dcurve {
 namespace {
 
-using residual_walk::index_bits;
-using residual_walk::kContexts;
-using residual_walk::kFormatVersion;
-using residual_walk::kSignContexts;
-using residual_walk::kSpatialShift;
-using residual_walk::options_for_chunk;
-using residual_walk::param_context;
-using residual_walk::SideModels;
-using residual_walk::values_checksum;
-using residual_walk::walk_frames;
+using namespace residual_walk;  // what both sides of the format share
 
 // The coder walk_frames drives to read the range-coded stream.
 struct StreamReader {
@@ -162,6 +153,17 @@ bool read_residual_index(const uint8_t* payload, size_t size, uint32_t F, bool h
 }
 
 namespace {
+// The index of model.residual.payload, whose chunks follow it in the payload itself.
+bool read_inline_index(const Model& model, ResidualIndex* index, std::string* error) {
+  const std::vector<uint8_t>& payload = model.residual.payload;
+  if (!read_residual_index(payload.data(), payload.size(), model.meta.frame_count, !model.faces.empty(), UINT64_MAX,
+                           index, error))
+    return false;
+  if (index->data_bytes != payload.size() - index->index_bytes)
+    return fail(error, "residual chunk index does not match the payload's chunk data");
+  return true;
+}
+
 // Decodes every chunk of the payload into q, filling plan (with its per-cluster choices).
 bool decode_all(const Model& model, std::vector<int32_t>* q, ResidualPlan* plan, std::string* error,
                 const ResidualOptions& options) {
@@ -171,10 +173,7 @@ bool decode_all(const Model& model, std::vector<int32_t>* q, ResidualPlan* plan,
     return fail(error, "model prediction has the wrong number of values");
   const std::vector<uint8_t>& payload = model.residual.payload;
   ResidualIndex index;
-  if (!read_residual_index(payload.data(), payload.size(), F, !model.faces.empty(), UINT64_MAX, &index, error))
-    return false;
-  if (index.data_bytes != payload.size() - index.index_bytes)
-    return fail(error, "residual chunk index does not match the payload's chunk data");
+  if (!read_inline_index(model, &index, error)) return false;
   Traversal owned;
   const Traversal& trav = traversal_for(model, options, &owned);
   q->assign(total, 0);
@@ -208,10 +207,7 @@ bool decode_predictor_plan(const Model& model, ResidualPlan* plan, std::string* 
   const uint32_t F = model.meta.frame_count;
   const std::vector<uint8_t>& payload = model.residual.payload;
   ResidualIndex index;
-  if (!read_residual_index(payload.data(), payload.size(), F, !model.faces.empty(), UINT64_MAX, &index, error))
-    return false;
-  if (index.data_bytes != payload.size() - index.index_bytes)
-    return fail(error, "residual chunk index does not match the payload's chunk data");
+  if (!read_inline_index(model, &index, error)) return false;
   plan->chunk_frames = index.chunk_frames;
   plan->chunks.assign(index.chunks.size(), PredictorPlan());
   for (uint32_t c = 0; c < index.chunks.size(); ++c) {
