@@ -12,12 +12,12 @@ namespace dcurve {
 namespace {
 
 // The candidate lengths for F frames, shortest first: each of kChunkCandidates below F,
-// then F (one chunk).
+// then F (one chunk) for a short clip.
 std::vector<uint32_t> candidate_lengths(uint32_t F) {
   std::vector<uint32_t> out;
   for (uint32_t K : kChunkCandidates)
     if (K < F) out.push_back(K);
-  out.push_back(F);
+  if (F <= kMaxWholeClipFrames || out.empty()) out.push_back(F);
   return out;
 }
 

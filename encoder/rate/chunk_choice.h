@@ -14,8 +14,12 @@
 
 namespace dcurve {
 
-// Lengths tried besides the whole clip (each only when shorter than it).
+// Lengths tried (each only when shorter than the clip), and the whole clip as one chunk when
+// it has at most kMaxWholeClipFrames frames: a short clip gains most from one chunk and costs
+// little to decode whole; a long one keeps a window of at most 32 frames (rope-small at 600
+// frames: one chunk was 36,510 bytes, but a decoder would have held the whole clip).
 constexpr uint32_t kChunkCandidates[] = {16, 32};
+constexpr uint32_t kMaxWholeClipFrames = 128;
 constexpr double kChunkSlack = 0.02;
 
 // Recodes model->residual (its grid, faces, curves and low-rank model kept) at each
