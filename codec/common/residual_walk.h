@@ -119,12 +119,19 @@ bool walk_frames(uint32_t V, const Traversal& trav, PredictorPlan& plan, const R
     if constexpr (kDecode) frame_start = coder.dec.position();
     FramePredictors& fp = plan.frames[f];
     const uint32_t K = uint32_t(fp.candidates.size());
-    base.resize(size_t(K) * stride);
     const int32_t* model_frame = model_values(options, f, stride, ws);
+    // Linear predictions are computed for the frame, V values per (candidate, axis) that uses
+    // one (at linear_at[j * 3 + a]); the other kinds are read in place.
+    std::array<uint32_t, kMaxCandidates * 3> linear_at{};
+    uint32_t linears = 0;
     for (uint32_t j = 0; j < K; ++j)
       for (int a = 0; a < 3; ++a)
-        if (fp.candidates[j][size_t(a)].kind == PredictorKind::Linear)  // the others are read in place
-          base_prediction(fp.candidates[j][size_t(a)], f, a, V, q, options, &base[(size_t(j) * 3 + size_t(a)) * V]);
+        if (fp.candidates[j][size_t(a)].kind == PredictorKind::Linear) linear_at[j * 3 + uint32_t(a)] = linears++;
+    base.resize(size_t(linears) * V);
+    for (uint32_t j = 0; j < K; ++j)
+      for (int a = 0; a < 3; ++a)
+        if (fp.candidates[j][size_t(a)].kind == PredictorKind::Linear)
+          base_prediction(fp.candidates[j][size_t(a)], f, a, V, q, options, &base[linear_at[j * 3 + uint32_t(a)] * size_t(V)]);
     const uint32_t blocks = motion_block_count(V, plan), block_size = plan.motion_block;
     if (kDecode) {
       fp.cluster_candidate.assign(K > 1 ? clusters : 0, 0);
@@ -166,7 +173,7 @@ bool walk_frames(uint32_t V, const Traversal& trav, PredictorPlan& plan, const R
         cluster_centre(ref[a], trav, block_begin, block_end, &centres[slot][size_t(a) * 3]);
       }
       for (int a = 0; a < 3; ++a) have_map[slot] |= choice[a].kind == PredictorKind::Motion;
-      const int64_t* bj = &base[size_t(j) * stride];
+      const uint32_t* linear_j = &linear_at[j * 3];
       const int32_t* model_f = model_frame;
       auto base_of = [&](uint32_t u, int a) -> int64_t {
         switch (choice[a].kind) {
@@ -176,7 +183,7 @@ bool walk_frames(uint32_t V, const Traversal& trav, PredictorPlan& plan, const R
           case PredictorKind::Model: return model_f[size_t(u) * 3 + size_t(a)];
           case PredictorKind::Linear: break;
         }
-        return bj[size_t(a) * V + u];
+        return base[linear_j[a] * size_t(V) + u];
       };
       for (uint32_t pos = begin; pos < end; ++pos) {
         const uint32_t v = trav.order[pos];
