@@ -49,7 +49,7 @@ bool prepare(SharedState* shared, uint64_t file_bytes, std::string* error) {
       return fail(error, "chunks are implausibly large for the file size");
     shared->traversal = build_traversal(m);
   }
-  return shared->predictor.build(m, budget, error);
+  return shared->predictor.build(m, budget, error, m.residual.step > 0 ? &shared->traversal : nullptr);
 }
 
 }  // namespace

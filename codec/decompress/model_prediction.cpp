@@ -12,7 +12,8 @@ namespace {
 
 // The mean and basis vectors are K + 1 pseudo-frames of the same mesh, coded by the
 // residual coder (its spatial predictors suit smooth basis shapes).
-bool decode_low_rank_basis(const Model& model, uint64_t max_values, std::vector<int32_t>* out, std::string* error) {
+bool decode_low_rank_basis(const Model& model, uint64_t max_values, const Traversal* traversal,
+                           std::vector<int32_t>* out, std::string* error) {
   const LowRankModel& lr = model.low_rank;
   const size_t n = size_t(model.meta.vertex_count) * 3;
   if ((uint64_t(lr.components) + 1) * n > max_values)
@@ -24,7 +25,9 @@ bool decode_low_rank_basis(const Model& model, uint64_t max_values, std::vector<
   pseudo.curves = model.curves;
   pseudo.residual.payload = lr.basis_payload;
   std::string why;
-  if (!decode_residuals(pseudo, out, &why)) return fail(error, "low-rank basis: " + why);
+  ResidualOptions options;
+  options.traversal = traversal;  // the file's: same vertices, faces and curves
+  if (!decode_residuals(pseudo, out, &why, options)) return fail(error, "low-rank basis: " + why);
   for (size_t i = n; i < out->size(); ++i)
     if ((*out)[i] < -kMaxLowRankBasis || (*out)[i] > kMaxLowRankBasis)
       return fail(error, "low-rank basis value out of range");
@@ -42,13 +45,13 @@ bool has_motion_model(const Model& model) {
 
 bool has_model_prediction(const Model& model) { return model.low_rank.components > 0 || has_motion_model(model); }
 
-bool GridPredictor::build(const Model& model, uint64_t max_values, std::string* error) {
+bool GridPredictor::build(const Model& model, uint64_t max_values, std::string* error, const Traversal* traversal) {
   model_ = &model;
   active_ = has_model_prediction(model);
   if (!evaluator_.build(model, max_values, error)) return false;
   if (model.low_rank.components == 0) return true;
   std::vector<int32_t> mean_and_basis;
-  if (!decode_low_rank_basis(model, max_values, &mean_and_basis, error)) return false;
+  if (!decode_low_rank_basis(model, max_values, traversal, &mean_and_basis, error)) return false;
   low_rank_.assign(mean_and_basis, size_t(model.meta.vertex_count) * 3);
   return true;
 }

@@ -35,7 +35,9 @@ class GridPredictor {
  public:
   // For a validated `model`, which must outlive the predictor. Fails when the tables would
   // exceed `max_values` values or the low-rank basis does not decode or is out of range.
-  bool build(const Model& model, uint64_t max_values, std::string* error);
+  // traversal (may be null: built for the low-rank basis): build_traversal(model), when the
+  // caller has it already.
+  bool build(const Model& model, uint64_t max_values, std::string* error, const Traversal* traversal = nullptr);
   bool active() const { return active_; }
   // Frame f's V * 3 values (grid units, clamped to +-2^30) into out.
   void frame(uint32_t f, int32_t* out, PredictionScratch* scratch) const;
