@@ -18,10 +18,12 @@ namespace {
 std::atomic<size_t> live_bytes{0}, peak_bytes{0};
 }  // namespace
 
-// Every allocation records its size in a header, so the live total is exact.
-void* operator new(size_t size) {
+namespace {
+// Every allocation records its size in a header, so the live total is exact. Every form of
+// operator new and delete that does not take an alignment is replaced, so each pair agrees.
+void* counted_new(size_t size) noexcept {
   void* p = std::malloc(size + 16);
-  if (!p) throw std::bad_alloc();
+  if (!p) return nullptr;
   *static_cast<size_t*>(p) = size;
   const size_t now = live_bytes += size;
   size_t peak = peak_bytes.load();
@@ -29,13 +31,29 @@ void* operator new(size_t size) {
   }
   return static_cast<char*>(p) + 16;
 }
-void operator delete(void* p) noexcept {
+void counted_delete(void* p) noexcept {
   if (!p) return;
   void* base = static_cast<char*>(p) - 16;
   live_bytes -= *static_cast<size_t*>(base);
   std::free(base);
 }
-void operator delete(void* p, size_t) noexcept { operator delete(p); }
+void* counted_or_throw(size_t size) {
+  void* p = counted_new(size);
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+}  // namespace
+
+void* operator new(size_t size) { return counted_or_throw(size); }
+void* operator new[](size_t size) { return counted_or_throw(size); }
+void* operator new(size_t size, const std::nothrow_t&) noexcept { return counted_new(size); }
+void* operator new[](size_t size, const std::nothrow_t&) noexcept { return counted_new(size); }
+void operator delete(void* p) noexcept { counted_delete(p); }
+void operator delete[](void* p) noexcept { counted_delete(p); }
+void operator delete(void* p, size_t) noexcept { counted_delete(p); }
+void operator delete[](void* p, size_t) noexcept { counted_delete(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { counted_delete(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { counted_delete(p); }
 
 namespace dcurve {
 namespace {
