@@ -44,7 +44,7 @@ bool prepare(SharedState* shared, uint64_t file_bytes, std::string* error) {
     if (!read_residual_index(p.data(), p.size(), m.meta.frame_count, !m.faces.empty(), m.residual.external_bytes,
                              &shared->index, error))
       return false;
-    // Two decoded chunks per cursor: bounded like every other table by the file size.
+    // A cursor holds a decoded chunk: bounded like every other table by the file size.
     if (uint64_t(shared->index.chunk_frames) * m.meta.vertex_count * 3 * 2 > budget)
       return fail(error, "chunks are implausibly large for the file size");
     shared->traversal = build_traversal(m);
