@@ -32,9 +32,8 @@ bool ChunkWindow::decode_chunk(uint32_t c, Error* error) {
   const ChunkEntry& e = shared_.index.chunks[c];
   const uint8_t* bytes = shared_.chunks->fetch(e.offset, e.size, &read_buffer_, error);
   if (!bytes) return false;
-  const std::string name = "chunk " + std::to_string(c);
   if (kVerifyChecksums && crc32c(bytes, size_t(e.size)) != e.crc) {
-    if (error) *error = {Status::CorruptChunk, name + " is corrupted (checksum mismatch)"};
+    if (error) *error = {Status::CorruptChunk, "chunk " + std::to_string(c) + " is corrupted (checksum mismatch)"};
     return false;
   }
   const Model& m = shared_.model;
@@ -49,7 +48,7 @@ bool ChunkWindow::decode_chunk(uint32_t c, Error* error) {
   std::string why;
   if (!decode_residual_chunk(V, shared_.traversal, bytes, size_t(e.size), span.count, values_.data(), options,
                              &workspace_, &why)) {
-    if (error) *error = {Status::CorruptChunk, name + ": " + why};
+    if (error) *error = {Status::CorruptChunk, "chunk " + std::to_string(c) + ": " + why};
     return false;
   }
   chunk_ = c;

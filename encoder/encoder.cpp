@@ -145,9 +145,8 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
   }
   out->snap = snap_distance(anim, opt.tolerance * L);
   // Without a length asked for, the search (grid, low-rank model) codes the clip as one
-  // chunk, and the length is chosen for its result at the end: a search on 16-frame chunks
-  // settled elsewhere (at 1e-3 horse-gallop took 24 components where the whole clip's
-  // references need one, 8.9 % larger; cloth-sphere 7.1 %).
+  // chunk and the length is chosen for its result at the end: short chunks hide the
+  // repeated poses far apart that the search's choices rest on.
   const uint32_t chunk_frames = opt.chunk_frames > 0 ? opt.chunk_frames : m.meta.frame_count;
   // The grid is chosen by whole plain encodes, which see the faces, curves and low-rank
   // model the file keeps: cheaper proxies (the residual layer alone, fewer coding orders)
@@ -268,11 +267,11 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     ResidualOptions ro;
     ro.weights_source = start.weights;
     ro.traversal = start.traversal.get();
-    uint64_t bytes = 0;
-    if (!choose_chunk_frames(&m, anim.frames, start.rounded, start.snap, ro, wo, opt.threads, &bytes, error))
+    if (!choose_chunk_frames(&m, anim.frames, start.rounded, start.snap, ro, wo, opt.threads, out, error))
       return false;
+  } else {
+    *out = write_container(m, wo);
   }
-  *out = write_container(m, wo);
   progress(opt.model == ModelChoice::None ? 0.9 : 0.5);
   if (opt.model != ModelChoice::None) {
     Model pde;

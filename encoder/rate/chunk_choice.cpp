@@ -21,11 +21,11 @@ std::vector<uint32_t> candidate_lengths(uint32_t F) {
   return out;
 }
 
-// *trial's residual layer coded with chunks of K frames; its file size.
+// *trial's residual layer coded with chunks of K frames; its file.
 bool code_with_length(Model* trial, uint32_t K, const std::vector<std::vector<float>>& frames,
                       const std::vector<int32_t>& rounded, double snap_distance, ResidualOptions ro,
                       const std::vector<int32_t>* prediction, const WriteOptions& write_options, int threads,
-                      uint64_t* bytes, std::string* error) {
+                      std::vector<uint8_t>* file, std::string* error) {
   trial->residual.chunk_frames = K;
   ro.model_prediction = prediction;
   ResidualPlanOptions po;
@@ -34,7 +34,7 @@ bool code_with_length(Model* trial, uint32_t K, const std::vector<std::vector<fl
   const ResidualPlan plan = choose_chunked_plan(*trial, frames, snap_distance, &q, ro, po);
   trial->residual.payload = encode_residuals(*trial, q, plan, ro);
   if (trial->residual.payload.empty()) return fail(error, "internal error: the chunked residual plan is invalid");
-  *bytes = write_container(*trial, write_options).size();
+  *file = write_container(*trial, write_options);
   return true;
 }
 
@@ -42,31 +42,31 @@ bool code_with_length(Model* trial, uint32_t K, const std::vector<std::vector<fl
 
 bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& frames,
                          const std::vector<int32_t>& rounded, double snap_distance, const ResidualOptions& shared,
-                         const WriteOptions& write_options, int threads, uint64_t* bytes, std::string* error) {
+                         const WriteOptions& write_options, int threads, std::vector<uint8_t>* file,
+                         std::string* error) {
   const uint32_t F = model->meta.frame_count;
   std::vector<int32_t> prediction;
   if (has_model_prediction(*model) && !model_grid_prediction(*model, UINT64_MAX, &prediction, error)) return false;
   const std::vector<int32_t>* predicted = prediction.empty() ? nullptr : &prediction;
   const std::vector<uint32_t> lengths = candidate_lengths(F);
-  std::vector<Model> trials(lengths.size());
-  std::vector<uint64_t> sizes(lengths.size());
+  std::vector<Model> trials(lengths.size(), *model);
+  std::vector<std::vector<uint8_t>> files(lengths.size());
   const uint32_t current = std::min(std::max(model->residual.chunk_frames, 1u), F);
   for (size_t i = 0; i < lengths.size(); ++i) {
     if (lengths[i] == current) {  // already coded so
-      trials[i] = *model;
-      sizes[i] = write_container(*model, write_options).size();
+      files[i] = write_container(*model, write_options);
       continue;
     }
-    trials[i] = *model;
     if (!code_with_length(&trials[i], lengths[i], frames, rounded, snap_distance, shared, predicted, write_options,
-                          threads, &sizes[i], error))
+                          threads, &files[i], error))
       return false;
   }
-  const uint64_t smallest = *std::min_element(sizes.begin(), sizes.end());
+  size_t smallest = SIZE_MAX;
+  for (const std::vector<uint8_t>& f : files) smallest = std::min(smallest, f.size());
   for (size_t i = 0; i < lengths.size(); ++i)
-    if (double(sizes[i]) <= double(smallest) * (1 + kChunkSlack)) {
+    if (double(files[i].size()) <= double(smallest) * (1 + kChunkSlack)) {
       *model = std::move(trials[i]);
-      *bytes = sizes[i];
+      file->swap(files[i]);
       return true;
     }
   return fail(error, "internal error: no chunk length chosen");

@@ -16,17 +16,18 @@ namespace dcurve {
 
 // Lengths tried (each only when shorter than the clip), and the whole clip as one chunk when
 // it has at most kMaxWholeClipFrames frames: a short clip gains most from one chunk and costs
-// little to decode whole; a long one keeps a window of at most 32 frames (rope-small at 600
-// frames: one chunk was 36,510 bytes, but a decoder would have held the whole clip).
+// little to decode whole; a long one keeps a decoder's window to at most 32 frames.
 constexpr uint32_t kChunkCandidates[] = {16, 32};
 constexpr uint32_t kMaxWholeClipFrames = 128;
 constexpr double kChunkSlack = 0.02;
 
 // Recodes model->residual (its grid, faces, curves and low-rank model kept) at each
 // candidate length from the grid values `rounded` (snapped again within snap_distance of
-// `frames`) and leaves the chosen one in *model. *bytes receives the chosen file's size.
+// `frames`) and leaves the chosen one in *model, its file (write_container with
+// write_options) in *file.
 bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& frames,
                          const std::vector<int32_t>& rounded, double snap_distance, const ResidualOptions& shared,
-                         const WriteOptions& write_options, int threads, uint64_t* bytes, std::string* error);
+                         const WriteOptions& write_options, int threads, std::vector<uint8_t>* file,
+                         std::string* error);
 
 }  // namespace dcurve
