@@ -5,6 +5,7 @@
 #include "bench/report.h"
 #include "bench/runner.h"
 #include "cli/commands.h"
+#include "cli/number_range.h"
 #include "cli/progress.h"
 #include "bench/paper_protocols.h"
 #include "encoder/curves/extract.h"
@@ -78,7 +79,7 @@ Action add_bench(CLI::App& app) {
   app.add_option("inputs", o->inputs, "Frame folders, scene files or built-in scene names (none: built-in corpus)");
   app.add_option("--tolerance", o->tolerances,
                  "Max error, fraction of the rest-pose bounding-box diagonal; repeat for several (default 1e-3)")
-      ->check(CLI::Range(1e-7, 0.5))
+      ->check(finite_range(kMinTolerance, 0.5))
       ->allow_extra_args(false);
   app.add_option("--methods", o->methods, "Comma-separated subset of methods (default: all)")
       ->delimiter(',')

@@ -3,13 +3,37 @@
 #include <cstdio>
 
 #include "cli/commands.h"
+#include "cli/number_range.h"
 #include "cli/progress.h"
 #include "encoder/curves/report_json.h"
 #include "encoder/encoder.h"
 #include "encoder/input.h"
 #include "encoder/io/files.h"
+#include "encoder/sim/scene.h"
 
 namespace dcurve::cli {
+namespace {
+
+// The files an encode of `input` reads: a folder's frames, or a scene file and its surface.
+std::vector<std::string> input_files(const std::string& input) {
+  std::vector<std::string> files;
+  std::string ignored;  // an unreadable input is reported when it is loaded
+  if (list_frame_files(input, &files, &ignored)) return files;
+  files = {input};
+  Scene scene;
+  if (load_scene_file(input, &scene, &ignored) && !scene.mesh_file.empty()) files.push_back(scene.mesh_file);
+  return files;
+}
+
+// Refuses, before a long encode, an output that cannot be replaced or is one of the inputs.
+bool check_encode_output(const std::string& input, const std::string& output, std::string* error) {
+  if (!check_output_path(output, error)) return false;
+  if (!is_one_of(output, input_files(input))) return true;
+  *error = output + ": the output is one of the input files; refusing to overwrite it";
+  return false;
+}
+
+}  // namespace
 
 Action add_encode(CLI::App& app) {
   struct Opts {
@@ -25,7 +49,7 @@ Action add_encode(CLI::App& app) {
       ->required();
   app.add_option("-o,--output", o->output, "Output .dcrv file")->required();
   app.add_option("--tolerance", o->tolerance, "Max error, fraction of the rest-pose bounding-box diagonal")
-      ->check(CLI::Range(1e-7, 0.5))
+      ->check(finite_range(kMinTolerance, 0.5))
       ->capture_default_str();
   app.add_option("--model", o->model,
                  "Motion model beside the exact frames: none (in-betweens blend linearly), pde8, pde32 or pde "
@@ -48,7 +72,7 @@ Action add_encode(CLI::App& app) {
   app.add_option("--grid", o->grid,
                  "Residual grid: auto (the refinement of the coarsest safe grid that codes smallest in trial "
                  "encodes, about four times the encode time) or a refinement in [1, 16] (no trials)")
-      ->check(CLI::IsMember({"auto"}) | CLI::Range(1.0, 16.0))
+      ->check(CLI::IsMember({"auto"}) | finite_range(1.0, 16.0))
       ->capture_default_str();
   app.add_option("--effort", o->effort,
                  "Search effort with --grid auto: 3 walks the grids by trial encodes (about four encodes), "
@@ -74,6 +98,10 @@ Action add_encode(CLI::App& app) {
   return [o]() {
     Animation anim;
     std::string err;
+    if (!check_encode_output(o->input, o->output, &err)) {
+      std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
+      return 1;
+    }
     if (!load_animation_input(o->input, false, progress_bar("simulate"), &anim, &err)) {
       std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
       return 1;

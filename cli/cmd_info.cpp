@@ -9,6 +9,7 @@
 #include "codec/common/residual.h"
 #include "codec/compress/low_rank_writer.h"
 #include "codec/decompress/container_reader.h"
+#include "decoder/dcurve.hpp"
 #include "encoder/io/files.h"
 #include "encoder/rate/plan_report.h"
 
@@ -119,11 +120,27 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
           {"sections", js}};
 }
 
+// `text` for a terminal: printable ASCII as is, every other byte as \xNN, so the units or a
+// path stored in a file cannot send escape sequences.
+std::string printable(const std::string& text) {
+  std::string out;
+  char buf[8];
+  for (unsigned char c : text) {
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out.push_back(char(c));
+    } else {
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    }
+  }
+  return out;
+}
+
 void print_text(const nlohmann::json& j) {
   std::printf("%s: %llu bytes, .dcrv %s\n", j["file"].get<std::string>().c_str(),
               (unsigned long long)j["bytes"].get<uint64_t>(), j["version"].get<std::string>().c_str());
   std::printf("  %u vertices, %u frames at %.3g fps, units \"%s\"\n", j["vertices"].get<uint32_t>(),
-              j["frames"].get<uint32_t>(), j["frame_rate"].get<double>(), j["units"].get<std::string>().c_str());
+              j["frames"].get<uint32_t>(), j["frame_rate"].get<double>(), printable(j["units"].get<std::string>()).c_str());
   std::printf("  tolerance %.3g of L = %.6g; %.3f bits per vertex per frame\n", j["tolerance"].get<double>(),
               j["rest_diagonal"].get<double>(), j["bpvf"].get<double>());
   std::printf("  motion %llu bytes, connectivity %llu bytes (%llu faces, %s layout, %.3f bytes/triangle)\n",
@@ -194,6 +211,21 @@ void print_text(const nlohmann::json& j) {
                 (unsigned long long)s["raw_bytes"].get<uint64_t>());
 }
 
+// Whether every frame decodes (decode's checks reach the chunks only when it evaluates them).
+bool decodes_every_frame(const std::vector<uint8_t>& bytes, std::string* error) {
+  auto dec = Decoder::open_memory(bytes.data(), bytes.size(), error);
+  if (!dec) return false;
+  auto cursor = dec->make_cursor();
+  std::vector<float> xyz(size_t(dec->vertex_count()) * 3);
+  Error e;
+  for (uint32_t f = 0; f < dec->frame_count(); ++f)
+    if (!cursor->evaluate_frame(f, xyz.data(), &e)) {
+      *error = "frame " + std::to_string(f) + ": " + e.message;
+      return false;
+    }
+  return true;
+}
+
 }  // namespace
 
 Action add_info(CLI::App& app) {
@@ -213,13 +245,14 @@ Action add_info(CLI::App& app) {
     }
     Model m;
     std::vector<SectionInfo> sections;
-    if (!read_container(bytes.data(), bytes.size(), &m, &err, &sections)) {
+    // The decoder's checks too: info describes only files that decode.
+    if (!read_container(bytes.data(), bytes.size(), &m, &err, &sections) || !decodes_every_frame(bytes, &err)) {
       std::fprintf(stderr, "dcurve info: %s: %s\n", o->input.c_str(), err.c_str());
       return 1;
     }
     nlohmann::json j = describe(o->input, bytes, m, sections);
-    if (o->json)
-      std::printf("%s\n", j.dump().c_str());
+    if (o->json)  // units are bytes from the file: invalid UTF-8 becomes U+FFFD
+      std::printf("%s\n", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     else
       print_text(j);
     return 0;

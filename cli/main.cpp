@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "cli/commands.h"
+#include "encoder/io/files.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"dcurve: compress animated triangle meshes into dynamic PDE curves (.dcrv)"};
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   }
+  dcurve::remove_temporary_on_signal();
   try {
     for (auto& [sub, action] : commands)
       if (sub->parsed()) return action();

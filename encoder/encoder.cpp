@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 #include <memory>
 
@@ -40,14 +41,18 @@ std::vector<uint32_t> smaller_face_order(const std::vector<uint32_t>& faces) {
   return face_payload_bytes(trav) < face_payload_bytes(faces) ? trav : faces;
 }
 
-// How far the residual layer may move a grid value from the input: the tolerance, less what
-// the decoder's float32 output can add (a few roundings of the largest coordinate).
-double snap_distance(const Animation& anim, double max_distance) {
+// What the decoder's float32 output can add to a vertex's error: a few roundings of the
+// largest coordinate.
+double float_output_error(const Animation& anim) {
   double largest = 0;
   for (const auto& frame : anim.frames)
     for (float x : frame) largest = std::max(largest, double(std::fabs(x)));
-  return max_distance - 4.0 * std::sqrt(3.0) * largest * std::ldexp(1.0, -24);
+  return 4.0 * std::sqrt(3.0) * largest * std::ldexp(1.0, -24);
 }
+
+// How far the residual layer may move a grid value from the input: the tolerance, less what
+// the decoder's float32 output can add.
+double snap_distance(const Animation& anim, double max_distance) { return max_distance - float_output_error(anim); }
 
 // Decodes `bytes` with the runtime decoder at every input frame time and measures it: the
 // only error figure the encoder reports.
@@ -230,7 +235,19 @@ bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const 
   return choose_motions(m, plain, anim.frames, start.rounded, start.snap, po, mco, report, error);
 }
 
+std::string format_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
+
 }  // namespace
+
+// The float32 rounding may take at most a quarter of the tolerance.
+double minimum_tolerance(const Animation& anim) {
+  if (anim.frames.empty()) return 0;
+  return 4.0 * float_output_error(anim) / bbox_diagonal(anim.frames[0]);
+}
 
 bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vector<uint8_t>* out,
                       EncodeReport* report, std::string* error) {
@@ -249,6 +266,9 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (opt.model != ModelChoice::None && opt.low_rank > 0 && opt.keep_all_motions)
     return fail(error, "a low-rank model cannot be combined with a PDE motion model");
   if (!(bbox_diagonal(anim.frames[0]) > 0)) return fail(error, "rest pose has a zero bounding box (all vertices coincide)");
+  if (opt.tolerance < minimum_tolerance(anim))
+    return fail(error, "tolerance " + format_number(opt.tolerance) + " is below what float32 coordinates hold for this "
+                       "input, " + format_number(minimum_tolerance(anim)) + " (rounding grows with the distance from the origin)");
 
   EncodeReport rep;
   SpatialWeightsStore weights;

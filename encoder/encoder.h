@@ -24,6 +24,12 @@ constexpr uint32_t kAutoSegmentFrames[] = {8, 4, 16};
 
 constexpr uint32_t kMaxChunkFrames = 4096;
 
+// The smallest tolerance the CLI accepts. What an input reaches also depends on where it
+// lies: the decoder's float32 output rounds a coordinate by up to 2^-24 of its magnitude, so
+// encode_animation refuses a tolerance below minimum_tolerance(anim) with that figure named.
+constexpr double kMinTolerance = 1e-6;
+double minimum_tolerance(const Animation& anim);
+
 // EncodeOptions::effort's range; the highest is the default.
 constexpr int kMinEffort = 1, kMaxEffort = 3;
 

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace dcurve::test {
@@ -13,10 +14,12 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-// Runs `args` with the dcurve CLI through the shell.
+// Runs `args` with the dcurve CLI through the shell: the one built beside the tests, or the
+// program DCURVE_TEST_CLI names (to run the tests against another build, e.g. main's).
 inline CommandResult run_cli(const std::string& args) {
   CommandResult r;
-  std::string cmd = std::string(DCURVE_CLI) + " " + args + " 2>&1";
+  const char* other = std::getenv("DCURVE_TEST_CLI");
+  std::string cmd = std::string(other && *other ? other : DCURVE_CLI) + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf;

@@ -1,10 +1,5 @@
 #include "encoder/io/frames.h"
 
-// OpenMesh 9 headers trip GCC 12's -Wmaybe-uninitialized on a default-constructed Vec3f.
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,83 +7,79 @@
 
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
+#include "encoder/io/mesh_writer.h"
+#include "encoder/io/polygon_reader.h"
 #include "encoder/io/text_mesh_check.h"
 
 namespace dcurve {
 namespace fs = std::filesystem;
 namespace {
 
-struct Traits : OpenMesh::DefaultTraits {
-  typedef OpenMesh::Vec3f Point;
-};
-using Mesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+// What was read must be what the file declares: a reader that skipped a record it could not
+// parse or use would otherwise shift ids or lose faces without a word.
+bool counts_match(const std::string& path, const DeclaredCounts& declared, const PolygonSoup& soup,
+                  std::string* error) {
+  const size_t vertices = soup.xyz.size() / 3;
+  if (declared.vertices >= 0 && size_t(declared.vertices) != vertices)
+    return fail(error, path + ": " + std::to_string(declared.vertices) + " vertices in the file, " +
+                           std::to_string(vertices) + " read (a record the reader could not parse)");
+  if (declared.faces >= 0 && size_t(declared.faces) != soup.polygon_count())
+    return fail(error, path + ": " + std::to_string(declared.faces) + " faces in the file, " +
+                           std::to_string(soup.polygon_count()) +
+                           " read (a face with an index out of range or a malformed face record)");
+  return true;
+}
 
-// OpenMesh reports every file it writes on its log streams; a codec's CLI must stay quiet.
-void silence_openmesh() {
-  static const bool done = [] {
-    ::omlog().disable();
-    ::omout().disable();
-    return true;
-  }();
-  (void)done;
+// Checks polygon p (at least 3 ids, each in range, none twice) and appends it as a fan of
+// triangles from its first vertex, as OpenMesh triangulates.
+bool append_polygon(const std::string& path, const PolygonSoup& soup, size_t p, std::vector<uint32_t>* faces,
+                    std::string* error) {
+  const uint32_t* ids = soup.ids.data() + soup.polygon_offsets[p];
+  const size_t n = soup.polygon_offsets[p + 1] - soup.polygon_offsets[p];
+  const size_t vertices = soup.xyz.size() / 3;
+  const std::string face = path + ": face " + std::to_string(p) + ": ";
+  if (n < 3) return fail(error, face + "fewer than 3 vertices");
+  for (size_t k = 0; k < n; ++k) {
+    if (ids[k] >= vertices) return fail(error, face + "vertex index out of range");
+    if (std::find(ids, ids + k, ids[k]) != ids + k)
+      return fail(error, face + "uses vertex " + std::to_string(ids[k]) + " twice (degenerate face)");
+  }
+  for (size_t k = 1; k + 1 < n; ++k) faces->insert(faces->end(), {ids[0], ids[k], ids[k + 1]});
+  return true;
+}
+
+bool copy_finite_vertices(const std::string& path, const PolygonSoup& soup, std::vector<float>* xyz,
+                          std::string* error) {
+  for (size_t i = 0; i < soup.xyz.size(); ++i)
+    if (!std::isfinite(soup.xyz[i])) return fail(error, path + ": vertex " + std::to_string(i / 3) + " is not finite");
+  *xyz = soup.xyz;
+  return true;
 }
 
 }  // namespace
 
 bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uint32_t>* faces,
                std::string* error) {
-  silence_openmesh();
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return fail(error, path + ": no such file");
-  if (!check_text_mesh_vertices(path, error)) return false;
-  Mesh mesh;
-  OpenMesh::IO::Options opt;
-  if (!OpenMesh::IO::read_mesh(mesh, path, opt))
-    return fail(error, path + ": cannot read mesh (unsupported format or malformed file)");
-  if (mesh.n_vertices() == 0) return fail(error, path + ": mesh has no vertices");
-  xyz->resize(mesh.n_vertices() * 3);
-  for (auto vh : mesh.vertices()) {
-    const auto& p = mesh.point(vh);
-    for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(p[a])) return fail(error, path + ": vertex " + std::to_string(vh.idx()) + " is not finite");
-      (*xyz)[3 * vh.idx() + a] = p[a];
-    }
-  }
+  DeclaredCounts declared;
+  if (!check_text_mesh_vertices(path, &declared, error)) return false;
+  PolygonSoup soup;
+  if (!read_polygon_soup(path, &soup, error)) return false;
+  if (soup.xyz.empty()) return fail(error, path + ": mesh has no vertices");
+  if (!counts_match(path, declared, soup, error)) return false;
   faces->clear();
-  faces->reserve(mesh.n_faces() * 3);
-  for (auto fh : mesh.faces())
-    for (auto vh : mesh.fv_range(fh)) faces->push_back(uint32_t(vh.idx()));
-  return true;
+  for (size_t p = 0; p < soup.polygon_count(); ++p)
+    if (!append_polygon(path, soup, p, faces, error)) return false;
+  return copy_finite_vertices(path, soup, xyz, error);
 }
 
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
                 const std::vector<uint32_t>& faces, std::string* error) {
-  silence_openmesh();
-  Mesh mesh;
-  mesh.reserve(vertex_count, faces.size(), faces.size() / 3);
-  std::vector<Mesh::VertexHandle> vh(vertex_count);
-  for (uint32_t v = 0; v < vertex_count; ++v)
-    vh[v] = mesh.add_vertex(Mesh::Point(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]));
-  for (size_t t = 0; t + 2 < faces.size(); t += 3) {
-    auto fh = mesh.add_face(vh[faces[t]], vh[faces[t + 1]], vh[faces[t + 2]]);
-    if (!fh.is_valid()) return fail(error, path + ": face " + std::to_string(t / 3) + " is non-manifold; OpenMesh cannot write it");
-  }
-  fs::path target(path);
-  fs::path tmp = target;
-  tmp += ".tmp" + lowercase_extension(target.string());  // OpenMesh picks the writer from the extension
-  OpenMesh::IO::Options opt;
-  if (lowercase_extension(target.string()) == ".ply") opt += OpenMesh::IO::Options::Binary;
-  if (!OpenMesh::IO::write_mesh(mesh, tmp.string(), opt, 9)) {
-    std::remove(tmp.c_str());
-    return fail(error, path + ": cannot write mesh");
-  }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    return fail(error, path + ": cannot rename into place: " + ec.message());
-  }
-  return true;
+  std::string bytes;
+  if (!mesh_file_bytes(lowercase_extension(path), xyz, vertex_count, faces, &bytes))
+    return fail(error, path + ": cannot write mesh: the extension is not .obj, .off or .ply");
+  return write_file_atomic(path, bytes.data(), bytes.size(), error);
 }
 
 bool validate_animation(const Animation& anim, std::string* error) {
@@ -105,30 +96,36 @@ bool validate_animation(const Animation& anim, std::string* error) {
   return true;
 }
 
-bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error) {
+bool list_frame_files(const std::string& dir, std::vector<std::string>* files, std::string* error) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return fail(error, dir + ": not a folder");
-  std::vector<fs::path> files;
+  files->clear();
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     std::string ext = lowercase_extension(e.path().string());
-    if (e.is_regular_file() && (ext == ".obj" || ext == ".ply" || ext == ".off")) files.push_back(e.path());
+    if (e.is_regular_file() && (ext == ".obj" || ext == ".ply" || ext == ".off")) files->push_back(e.path().string());
   }
   if (ec) return fail(error, dir + ": " + ec.message());
-  if (files.empty()) return fail(error, dir + ": no .obj, .ply or .off frames found");
-  std::sort(files.begin(), files.end());
+  if (files->empty()) return fail(error, dir + ": no .obj, .ply or .off frames found");
+  std::sort(files->begin(), files->end());
+  return true;
+}
+
+bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error) {
+  std::vector<std::string> files;
+  if (!list_frame_files(dir, &files, error)) return false;
   *anim = Animation{};
   for (size_t f = 0; f < files.size(); ++f) {
     std::vector<float> xyz;
     std::vector<uint32_t> faces;
-    if (!read_mesh(files[f].string(), &xyz, &faces, error)) return false;
+    if (!read_mesh(files[f], &xyz, &faces, error)) return false;
     if (f == 0) {
       anim->vertex_count = uint32_t(xyz.size() / 3);
       anim->faces = std::move(faces);
     } else if (xyz.size() != size_t(anim->vertex_count) * 3) {
-      return fail(error, files[f].string() + ": " + std::to_string(xyz.size() / 3) + " vertices, frame 0 has " +
+      return fail(error, files[f] + ": " + std::to_string(xyz.size() / 3) + " vertices, frame 0 has " +
                              std::to_string(anim->vertex_count));
     } else if (faces != anim->faces) {
-      return fail(error, files[f].string() + ": connectivity differs from frame 0");
+      return fail(error, files[f] + ": connectivity differs from frame 0");
     }
     anim->frames.push_back(std::move(xyz));
   }

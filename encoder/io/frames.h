@@ -1,5 +1,6 @@
 // Animated meshes in and out: a folder of OBJ/PLY/OFF frames with fixed connectivity,
-// read and written through OpenMesh's IO. Vertex order is never changed.
+// read through OpenMesh's readers. Vertex order is never changed: vertex i read is the file's
+// vertex i, and a file the reader would alter (a skipped record, an unusable face) is refused.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -14,14 +15,21 @@ struct Animation {
   double frame_rate = 30.0;                 // frames per second
 };
 
-// Reads one triangle mesh. Polygons are triangulated by OpenMesh; errors name the file.
+// Reads one mesh. Polygons become fans of triangles from their first vertex; non-manifold
+// faces are kept as they are. Refused, with the file named: a vertex count or face count that
+// differs from the file's own, a face with fewer than 3 vertices, an index out of range or a
+// vertex used twice, a coordinate that is not finite.
 bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uint32_t>* faces,
                std::string* error);
 
-// Writes one mesh; the format follows the extension (.obj, .ply, .off). Written to a
-// temporary name and renamed, so a failure leaves no partial file.
+// Writes one mesh; the format follows the extension (.obj, .ply, .off; encoder/io/mesh_writer.h).
+// Written through write_file_atomic, so a failure leaves no partial file.
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
                 const std::vector<uint32_t>& faces, std::string* error);
+
+// The .obj/.ply/.off files of `dir` in name order (paths with `dir` in front); false when
+// there are none.
+bool list_frame_files(const std::string& dir, std::vector<std::string>* files, std::string* error);
 
 // Reads every .obj/.ply/.off file of `dir` in name order. All frames must have the same
 // vertex count and face list, and finite coordinates.

@@ -1,0 +1,77 @@
+#include "encoder/io/mesh_writer.h"
+
+#include <charconv>
+#include <cstring>
+
+namespace dcurve {
+namespace {
+
+// Appends x as the shortest decimal that parses back to exactly x.
+void append_float(std::string* out, float x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  out->append(buf, r.ptr);
+}
+
+void append_vertices(std::string* out, const char* prefix, const float* xyz, uint32_t vertex_count) {
+  for (size_t i = 0; i < size_t(vertex_count) * 3; i += 3) {
+    out->append(prefix);
+    for (int a = 0; a < 3; ++a) {
+      if (a) out->push_back(' ');
+      append_float(out, xyz[i + a]);
+    }
+    out->push_back('\n');
+  }
+}
+
+void append_triangles(std::string* out, const char* prefix, uint32_t first_id, const std::vector<uint32_t>& faces) {
+  for (size_t t = 0; t + 2 < faces.size(); t += 3) {
+    out->append(prefix);
+    for (int k = 0; k < 3; ++k) {
+      if (k) out->push_back(' ');
+      out->append(std::to_string(faces[t + k] + first_id));
+    }
+    out->push_back('\n');
+  }
+}
+
+template <typename T>
+void append_binary(std::string* out, T value) {
+  char b[sizeof(T)];
+  std::memcpy(b, &value, sizeof(T));  // dcurve's targets are little-endian, as the header says
+  out->append(b, sizeof(T));
+}
+
+void ply_bytes(const float* xyz, uint32_t vertex_count, const std::vector<uint32_t>& faces, std::string* out) {
+  *out = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(vertex_count) +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(faces.size() / 3) +
+         "\nproperty list uchar int vertex_indices\nend_header\n";
+  out->append(reinterpret_cast<const char*>(xyz), size_t(vertex_count) * 3 * sizeof(float));
+  for (size_t t = 0; t + 2 < faces.size(); t += 3) {
+    append_binary<uint8_t>(out, 3);
+    for (int k = 0; k < 3; ++k) append_binary<int32_t>(out, int32_t(faces[t + k]));
+  }
+}
+
+}  // namespace
+
+bool mesh_file_bytes(const std::string& extension, const float* xyz, uint32_t vertex_count,
+                     const std::vector<uint32_t>& faces, std::string* bytes) {
+  const std::string& ext = extension;
+  bytes->clear();
+  if (ext == ".obj") {
+    append_vertices(bytes, "v ", xyz, vertex_count);
+    append_triangles(bytes, "f ", 1, faces);
+  } else if (ext == ".off") {
+    *bytes = "OFF\n" + std::to_string(vertex_count) + " " + std::to_string(faces.size() / 3) + " 0\n";
+    append_vertices(bytes, "", xyz, vertex_count);
+    append_triangles(bytes, "3 ", 0, faces);
+  } else if (ext == ".ply") {
+    ply_bytes(xyz, vertex_count, faces, bytes);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace dcurve

@@ -1,0 +1,101 @@
+// The crash-safe writer (encoder/io/files): temporaries are created exclusively beside the
+// output and never through a link, outputs that are links or special files are refused,
+// and a SIGTERM during a write removes the temporary.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "encoder/io/files.h"
+#include "test_util.h"
+
+namespace dcurve::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+size_t entries(const TempDir& dir) {
+  size_t n = 0;
+  for (auto it = fs::directory_iterator(dir.path); it != fs::directory_iterator(); ++it) ++n;
+  return n;
+}
+
+TEST(Files, WritesReplaceRegularFilesAndLeaveNoTemporary) {
+  TempDir dir;
+  std::string err;
+  ASSERT_TRUE(write_file_atomic(dir / "a.bin", "first", 5, &err)) << err;
+  ASSERT_TRUE(write_file_atomic(dir / "a.bin", "second", 6, &err)) << err;
+  EXPECT_EQ(file_text(dir / "a.bin"), "second");
+  EXPECT_EQ(entries(dir), 1u);
+}
+
+TEST(Files, LinksAndSpecialFilesAtTheOutputAreRefused) {
+  TempDir dir;
+  std::ofstream(dir / "victim.txt") << "precious";
+  fs::create_symlink(dir / "victim.txt", dir / "link.bin");
+  ASSERT_EQ(mkfifo((dir / "fifo.bin").c_str(), 0644), 0);
+  fs::create_directory(dir / "folder.bin");
+  std::string err;
+  for (const char* name : {"link.bin", "fifo.bin", "folder.bin"}) {
+    EXPECT_FALSE(check_output_path(dir / name, &err)) << name;
+    EXPECT_FALSE(write_file_atomic(dir / name, "x", 1, &err)) << name;
+    EXPECT_NE(err.find(name), std::string::npos) << err;
+  }
+  EXPECT_TRUE(fs::is_symlink(dir / "link.bin"));
+  EXPECT_TRUE(fs::is_fifo(dir / "fifo.bin"));
+  EXPECT_EQ(file_text(dir / "victim.txt"), "precious");
+  EXPECT_EQ(entries(dir), 4u);  // no temporary left
+  EXPECT_TRUE(check_output_path(dir / "absent.bin", &err)) << err;
+}
+
+TEST(Files, SameFileIsFoundThroughLinks) {
+  TempDir dir;
+  std::ofstream(dir / "a.obj") << "v 0 0 0\n";
+  fs::create_symlink(dir / "a.obj", dir / "b.obj");
+  EXPECT_TRUE(is_one_of(dir / "b.obj", {dir / "x.obj", dir / "a.obj"}));
+  EXPECT_FALSE(is_one_of(dir / "x.obj", {dir / "a.obj"}));
+}
+
+// A child writes a large file; the parent sends SIGTERM as soon as the temporary appears.
+// The child dies of the signal and the folder is left empty.
+TEST(Files, TermSignalDuringAWriteRemovesTheTemporary) {
+  TempDir dir;
+  const std::string out = dir / "big.bin";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    remove_temporary_on_signal();
+    std::vector<char> data(size_t(1) << 28, 'x');  // long enough to write that the signal lands first
+    for (;;) write_file_atomic(out, data.data(), data.size(), nullptr);
+  }
+  bool seen = false;
+  const auto start = std::chrono::steady_clock::now();
+  while (!seen && std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
+    seen = entries(dir) > 0;
+    if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  kill(child, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(seen);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  EXPECT_EQ(entries(dir), 0u);
+}
+
+}  // namespace
+}  // namespace dcurve::test
