@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test command: installs dependencies, builds (Release), runs every test with ctest,
 # then does the same under AddressSanitizer + UndefinedBehaviorSanitizer, then fuzzes the
-# decoder for a bounded time when the fuzz script exists. Exits non-zero on any failure.
+# decoder and the mesh readers for a bounded time each when the fuzz script exists. Exits
+# non-zero on any failure.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -36,6 +37,8 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 
 if [ -x scripts/fuzz.sh ]; then
   echo "== Decoder fuzzing (bounded)"
-  scripts/fuzz.sh 60
+  scripts/fuzz.sh 30 build-fuzz decoder
+  echo "== Mesh reader fuzzing (bounded)"
+  scripts/fuzz.sh 30 build-fuzz reader
 fi
 echo "== All tests passed"

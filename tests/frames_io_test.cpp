@@ -97,6 +97,19 @@ TEST(FramesIo, RecordsTheReadersWouldSkipAreRefused) {
       {"degenerate.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 1 3\n", "face"},
       {"range.ply", ply_head + "0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 7\n", "line 15: face 1"},
       {"short.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n", "ends after 1 of its 2 faces"},
+      // Found by the reader fuzz target: OpenMesh's PLY reader crashes on a property before any
+      // element; a bare "v" line is a vertex OpenMesh does not read.
+      {"header.ply", "ply\nformat ascii 1.0\nproperty float x\nelement vertex 1\nend_header\n0\n", "line 3: malformed PLY header"},
+      {"noz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", "no z"},
+      {"bare.obj", square4 + "v\nf 1 2 3\n", "line 5"},
+      {"feed.obj", square4 + "v\f\f\nf 1 2 3\n", "line 5"},
+      // OpenMesh's OFF reader reads counts across lines and allocates a face's vertex count.
+      {"counts.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "line 1: an OFF file needs its keyword alone"},
+      {"junk.off", "OFF 0.0\n1 0 0\n0 1 0\n", "line 1: an OFF file needs"},
+      {"split.off", "OFF\n3\n1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "line 2: an OFF file needs"},
+      {"nul.off", std::string("OFF\n3 1 0\n0 0 0\0\n1 0 0\n0 1 0\n3 0 1 2\n", 37), "line 3: a control character"},
+      {"huge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n555555555555 0 1 2\n", "line 6: face 0"},
+      {"binary.off", "OFF BINARY\n", "binary OFF is not supported"},
   };
   for (const auto& c : cases) {
     TempDir dir;

@@ -5,6 +5,8 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
+#include <exception>
+
 #include "codec/common/error.h"
 
 namespace dcurve {
@@ -52,8 +54,12 @@ bool read_polygon_soup(const std::string& path, PolygonSoup* soup, std::string* 
   Kernel kernel;
   SoupImporter importer(kernel, soup);
   OpenMesh::IO::Options opt;
-  if (!OpenMesh::IO::IOManager().read(path, importer, opt))
-    return fail(error, path + ": cannot read mesh (unsupported format or malformed file)");
+  try {
+    if (!OpenMesh::IO::IOManager().read(path, importer, opt))
+      return fail(error, path + ": cannot read mesh (unsupported format or malformed file)");
+  } catch (const std::exception& e) {  // e.g. std::bad_alloc for a count no file could hold
+    return fail(error, path + ": cannot read mesh: " + e.what());
+  }
   soup->xyz.resize(kernel.n_vertices() * 3);
   for (auto vh : kernel.vertices()) {
     const auto& p = kernel.point(vh);

@@ -1,6 +1,7 @@
 #include "encoder/io/text_mesh_check.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
@@ -40,9 +41,11 @@ bool bad_record(const std::string& path, size_t line, std::string* error) {
   return fail(error, path + ": line " + std::to_string(line) + ": vertex values are not finite numbers within float range");
 }
 
-// The record's keyword ("v", "f", ...) at line[i], followed by a blank.
+// The record's keyword ("v", "f", ...) at line[i], followed by white space (as a stream reads
+// it: form feeds too) or the line's end.
 bool obj_record(const std::string& line, size_t i, char keyword) {
-  return i != std::string::npos && line[i] == keyword && i + 1 < line.size() && (line[i + 1] == ' ' || line[i + 1] == '\t');
+  return i != std::string::npos && line[i] == keyword &&
+         (i + 1 == line.size() || std::isspace(static_cast<unsigned char>(line[i + 1])));
 }
 
 // What is wrong with the "f" record `p` (after the keyword) when `vertices` are defined so
@@ -71,7 +74,7 @@ bool check_obj(std::ifstream& in, const std::string& path, DeclaredCounts* decla
   std::string line;
   declared->vertices = declared->faces = 0;
   for (size_t number = 1; std::getline(in, line); ++number) {
-    const size_t i = line.find_first_not_of(" \t");
+    const size_t i = line.find_first_not_of(" \t\r\f\v");
     if (obj_record(line, i, 'f')) {
       ++declared->faces;
       const std::string problem = obj_face_problem(line.c_str() + i + 1, declared->vertices);
@@ -88,7 +91,7 @@ bool check_obj(std::ifstream& in, const std::string& path, DeclaredCounts* decla
 bool next_content_line(std::ifstream& in, std::string* line, size_t* number) {
   while (std::getline(in, *line)) {
     ++*number;
-    const size_t i = line->find_first_not_of(" \t\r");
+    const size_t i = line->find_first_not_of(" \t\r\f\v");
     if (i != std::string::npos && (*line)[i] != '#') return true;
   }
   return false;
@@ -128,61 +131,144 @@ bool off_keyword(const std::string& word) {
 bool check_off(std::ifstream& in, const std::string& path, DeclaredCounts* declared, std::string* error) {
   std::string line;
   size_t number = 0;
-  if (!next_content_line(in, &line, &number)) return true;  // empty: OpenMesh's error
+  if (!next_content_line(in, &line, &number)) return fail(error, path + ": empty file");
   std::istringstream header(line);
-  std::string magic, binary;
+  std::string magic, rest;
   header >> magic;
-  if (!off_keyword(magic)) return true;  // not OFF: OpenMesh's error
-  if (header >> binary && binary == "BINARY") return true;  // counts are binary: checked after reading
-  long long vertices = -1, faces = -1;
-  std::istringstream counts(line.substr(line.find(magic) + magic.size()));
-  if (!(counts >> vertices) && next_content_line(in, &line, &number)) {
-    counts = std::istringstream(line);
-    counts >> vertices;
-  }
-  counts >> faces;
+  if (!off_keyword(magic)) return fail(error, path + ": not an OFF file (no OFF header)");
+  // OpenMesh's binary OFF reader trusts its counts; no check can precede it without parsing it all.
+  const bool more = bool(header >> rest);
+  if (more && rest == "BINARY") return fail(error, path + ": binary OFF is not supported");
+  // OpenMesh reads the counts (vertices, faces, edges) from the line after the keyword's.
+  long long vertices = -1, faces = -1, edges = 0;
+  std::istringstream counts;
+  if (!more && next_content_line(in, &line, &number)) counts = std::istringstream(line);
+  if (!(counts >> vertices >> faces) || vertices < 0 || faces < 0 || (counts >> edges && counts >> rest) ||
+      (!counts.eof() && !counts.fail()))
+    return fail(error, path + ": line " + std::to_string(number) + ": an OFF file needs its keyword alone on a line, "
+                       "then its vertex, face and edge counts alone on the next");
   declared->vertices = vertices;
   declared->faces = faces;
   for (long long v = 0; v < vertices; ++v) {
-    if (!next_content_line(in, &line, &number)) return true;  // truncated: OpenMesh's error
+    if (!next_content_line(in, &line, &number))
+      return fail(error, path + ": the file ends after " + std::to_string(v) + " of its " + std::to_string(vertices) +
+                             " vertices");
     if (!finite_numbers(line.c_str(), 3)) return bad_record(path, number, error);
   }
   return check_face_records(in, faces, vertices, path, &number, error);
 }
 
-bool check_ply(std::ifstream& in, const std::string& path, DeclaredCounts* declared, std::string* error) {
-  std::string line, word;
-  size_t number = 0;
-  bool ascii = false, vertex_seen = false, faces_follow = false;  // the face element right after "vertex"
-  std::string previous;
-  long long lines_before = 0, vertices = 0;  // data lines of the elements before "vertex"
-  while (std::getline(in, line)) {
-    ++number;
-    std::istringstream s(line);
-    if (!(s >> word)) continue;
-    if (word == "end_header") break;
-    if (word == "format") {
-      ascii = (s >> word) && word == "ascii";
-    } else if (word == "element") {
-      std::string name;
-      long long count = 0;
-      s >> name >> count;
-      if (name == "face") declared->faces = count;
-      faces_follow = faces_follow || (name == "face" && previous == "vertex");
-      previous = name;
-      if (vertex_seen) continue;
-      vertex_seen = name == "vertex";
-      (vertex_seen ? vertices : lines_before) += std::max(count, 0LL);
-    }
+// What a PLY header declares, as far as the checks need it.
+struct PlyHeader {
+  bool ascii = false;
+  bool wide_list_count = false;  // a list whose count is wider than 16 bits
+  std::vector<std::pair<std::string, long long>> elements;  // name, count, in file order
+  std::vector<std::string> vertex_properties;
+};
+
+bool ply_type(const std::string& t, bool integer_only = false) {
+  static const char* const kIntegers[] = {"char",  "uchar", "short",  "ushort", "int",    "uint",
+                                          "int8",  "uint8", "int16",  "uint16", "int32",  "uint32"};
+  for (const char* k : kIntegers)
+    if (t == k) return true;
+  return !integer_only && (t == "float" || t == "double" || t == "float32" || t == "float64");
+}
+
+// One header line after "ply"; false when it is not one PLY allows (OpenMesh's PLY reader
+// crashes on some, e.g. a property before any element).
+bool ply_header_line(std::istringstream& s, const std::string& word, PlyHeader* h) {
+  std::string a, b, c, name, rest;
+  if (word == "comment" || word == "obj_info") return true;
+  if (word == "format") {
+    if (!(s >> a >> b) || b != "1.0") return false;
+    h->ascii = a == "ascii";
+    return h->ascii || a == "binary_little_endian" || a == "binary_big_endian";
   }
-  declared->vertices = vertices;
-  if (!ascii || vertices == 0) return true;
+  if (word == "element") {
+    if (!(s >> a >> b) || b.empty() || b.size() > 10 || b.find_first_not_of("0123456789") != std::string::npos)
+      return false;
+    h->elements.emplace_back(a, std::stoll(b));
+    return h->elements.back().second <= 0x7fffffff;
+  }
+  if (word != "property" || h->elements.empty() || !(s >> a >> b)) return false;
+  if (a == "list" ? !(s >> c >> name) || !ply_type(b, true) || !ply_type(c, true) : !ply_type(a)) return false;
+  h->wide_list_count = h->wide_list_count || (a == "list" && b.find("int") != std::string::npos &&
+                                              b != "int8" && b != "uint8" && b != "int16" && b != "uint16");
+  if (h->elements.back().first == "vertex") h->vertex_properties.push_back(a == "list" ? name : b);
+  return !(s >> rest);
+}
+
+bool read_ply_header(std::ifstream& in, const std::string& path, PlyHeader* h, size_t* number, std::string* error) {
+  std::string line, word;
+  for (*number = 0; std::getline(in, line);) {
+    ++*number;
+    std::istringstream s(line);
+    if (!(s >> word) && *number > 1) continue;
+    if (*number == 1) {
+      if (word != "ply") return fail(error, path + ": not a PLY file (no \"ply\" line)");
+      continue;
+    }
+    if (word == "end_header") {
+      for (const char* axis : {"x", "y", "z"})
+        if (std::find(h->vertex_properties.begin(), h->vertex_properties.end(), axis) == h->vertex_properties.end())
+          return fail(error, path + ": the PLY vertex element has no " + axis + " property");
+      return true;
+    }
+    if (!ply_header_line(s, word, h)) return fail(error, path + ": line " + std::to_string(*number) + ": malformed PLY header");
+  }
+  return fail(error, path + ": the PLY header has no end_header");
+}
+
+bool check_ply(std::ifstream& in, const std::string& path, DeclaredCounts* declared, std::string* error) {
+  PlyHeader h;
+  size_t number = 0;
+  if (!read_ply_header(in, path, &h, &number, error)) return false;
+  long long lines_before = 0, vertices = -1;  // data lines of the elements before "vertex"
+  bool faces_follow = false;                   // the face element right after "vertex"
+  for (size_t e = 0; e < h.elements.size(); ++e) {
+    const auto& [name, count] = h.elements[e];
+    if (name == "face") declared->faces = count;
+    faces_follow = faces_follow || (name == "face" && e > 0 && h.elements[e - 1].first == "vertex");
+    if (vertices < 0 && name == "vertex") vertices = count;
+    if (vertices < 0) lines_before += count;
+  }
+  declared->vertices = std::max(vertices, 0LL);
+  // OpenMesh's binary reader allocates a list's count before reading it: bound the count.
+  if (!h.ascii && h.wide_list_count)
+    return fail(error, path + ": binary PLY lists with 32-bit counts are not supported (use uchar or ushort)");
+  if (!h.ascii || vertices <= 0) return true;
+  std::string line;
   for (long long k = 0; k < lines_before && std::getline(in, line); ++k) ++number;
   for (long long v = 0; v < vertices && std::getline(in, line); ++v) {
     ++number;
     if (!finite_numbers(line.c_str(), -1)) return bad_record(path, number, error);
   }
   return !faces_follow || check_face_records(in, declared->faces, vertices, path, &number, error);
+}
+
+// The first line holding a control character (a byte below 0x20 other than white space) in
+// the text part of a file, 0 when none: OpenMesh's readers and these checks would part ways.
+// `header_only`: up to "end_header" (a binary PLY's body is not text).
+size_t control_character_line(std::ifstream& in, bool header_only) {
+  std::string line;
+  for (size_t number = 1; std::getline(in, line); ++number) {
+    for (unsigned char c : line)
+      if (c < 0x20 && !std::isspace(c)) return number;
+    if (header_only && line.rfind("end_header", 0) == 0) break;
+  }
+  return 0;
+}
+
+bool ply_is_ascii(std::ifstream& in) {
+  std::string line;
+  while (std::getline(in, line) && line.rfind("end_header", 0) != 0)
+    if (line.rfind("format ascii", 0) == 0) return true;
+  return false;
+}
+
+void rewind(std::ifstream& in) {
+  in.clear();
+  in.seekg(0);
 }
 
 }  // namespace
@@ -193,6 +279,11 @@ bool check_text_mesh_vertices(const std::string& path, DeclaredCounts* declared,
   if (ext != ".obj" && ext != ".off" && ext != ".ply") return true;
   std::ifstream in(path, std::ios::binary);
   if (!in) return true;  // unreadable: OpenMesh reports it
+  const bool binary_ply = ext == ".ply" && !ply_is_ascii(in);
+  rewind(in);
+  if (const size_t line = control_character_line(in, binary_ply))
+    return fail(error, path + ": line " + std::to_string(line) + ": a control character in a text mesh file");
+  rewind(in);
   if (ext == ".obj") return check_obj(in, path, declared, error);
   if (ext == ".off") return check_off(in, path, declared, error);
   return check_ply(in, path, declared, error);
