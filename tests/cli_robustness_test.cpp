@@ -13,7 +13,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "codec/compress/container_writer.h"
@@ -27,13 +26,6 @@ namespace dcurve::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Three frames of a 4 x 4 sheet whose middle rises: `scale` times unit coordinates.
 Animation small_sheet(double scale = 1.0) {

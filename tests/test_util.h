@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -116,6 +118,14 @@ inline std::string square(const std::string& ext, const std::string& v1) {
 }
 // The line of square()'s second vertex in its file, counted from 1.
 inline size_t square_second_vertex_line(const std::string& ext) { return ext == "obj" ? 2 : ext == "off" ? 4 : 11; }
+
+// The whole content of a file ("" when it cannot be read).
+inline std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 // A scratch folder removed when the object dies.
 struct TempDir {
