@@ -110,6 +110,10 @@ TEST(FramesIo, RecordsTheReadersWouldSkipAreRefused) {
       {"nul.off", std::string("OFF\n3 1 0\n0 0 0\0\n1 0 0\n0 1 0\n3 0 1 2\n", 37), "line 3: a control character"},
       {"huge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n555555555555 0 1 2\n", "line 6: face 0"},
       {"binary.off", "OFF BINARY\n", "binary OFF is not supported"},
+      {"huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\n"
+                   "property float y\nproperty float z\nend_header\n", "shorter than its PLY header declares"},
+      {"huge_ascii.ply", "ply\nformat ascii 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\n"
+                         "property float z\nend_header\n0 0 0\n", "ends after 1 of its 2000000000 vertices"},
   };
   for (const auto& c : cases) {
     TempDir dir;

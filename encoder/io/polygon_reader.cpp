@@ -30,6 +30,8 @@ class SoupImporter : public OpenMesh::IO::ImporterT<Kernel> {
   void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle, const std::vector<OpenMesh::Vec2f>&) override {}
   void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle, const std::vector<OpenMesh::Vec3f>&) override {}
   size_t n_faces() const override { return soup_->polygon_count(); }
+  // A header's counts are not trusted to size anything: the file is read as it is.
+  void reserve(unsigned int, unsigned int, unsigned int) override {}
 
  private:
   PolygonSoup* soup_;

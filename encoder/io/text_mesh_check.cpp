@@ -159,43 +159,68 @@ bool check_off(std::ifstream& in, const std::string& path, DeclaredCounts* decla
 }
 
 // What a PLY header declares, as far as the checks need it.
+struct PlyElement {
+  std::string name;
+  long long count = 0;
+  long long min_bytes = 0;  // the least a binary record takes (a list counted as empty)
+};
 struct PlyHeader {
   bool ascii = false;
   bool wide_list_count = false;  // a list whose count is wider than 16 bits
-  std::vector<std::pair<std::string, long long>> elements;  // name, count, in file order
+  std::vector<PlyElement> elements;
   std::vector<std::string> vertex_properties;
 };
 
-bool ply_type(const std::string& t, bool integer_only = false) {
-  static const char* const kIntegers[] = {"char",  "uchar", "short",  "ushort", "int",    "uint",
-                                          "int8",  "uint8", "int16",  "uint16", "int32",  "uint32"};
-  for (const char* k : kIntegers)
-    if (t == k) return true;
-  return !integer_only && (t == "float" || t == "double" || t == "float32" || t == "float64");
+// Bytes of a PLY scalar type; 0 for a name that is not one (or a real type when integer_only).
+int ply_type_bytes(const std::string& t, bool integer_only = false) {
+  static const std::pair<const char*, int> kTypes[] = {
+      {"char", 1},  {"uchar", 1}, {"int8", 1},  {"uint8", 1},   {"short", 2},   {"ushort", 2},
+      {"int16", 2}, {"uint16", 2}, {"int", 4},  {"uint", 4},    {"int32", 4},   {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+  for (const auto& [name, bytes] : kTypes)
+    if (t == name) return integer_only && (t[0] == 'f' || t[0] == 'd') ? 0 : bytes;
+  return 0;
+}
+
+// One property line; false when malformed or before any element.
+bool ply_property(std::istringstream& s, PlyHeader* h) {
+  std::string a, b, c, name, rest;
+  if (h->elements.empty() || !(s >> a >> b)) return false;
+  const bool list = a == "list";
+  const int bytes = list ? ply_type_bytes(b, true) : ply_type_bytes(a);
+  if (bytes == 0 || (list && (!(s >> c >> name) || ply_type_bytes(c, true) == 0)) || s >> rest) return false;
+  h->wide_list_count = h->wide_list_count || (list && bytes > 2);
+  h->elements.back().min_bytes += bytes;
+  if (h->elements.back().name == "vertex") h->vertex_properties.push_back(list ? name : b);
+  return true;
 }
 
 // One header line after "ply"; false when it is not one PLY allows (OpenMesh's PLY reader
 // crashes on some, e.g. a property before any element).
 bool ply_header_line(std::istringstream& s, const std::string& word, PlyHeader* h) {
-  std::string a, b, c, name, rest;
+  std::string a, b;
   if (word == "comment" || word == "obj_info") return true;
   if (word == "format") {
     if (!(s >> a >> b) || b != "1.0") return false;
     h->ascii = a == "ascii";
     return h->ascii || a == "binary_little_endian" || a == "binary_big_endian";
   }
-  if (word == "element") {
-    if (!(s >> a >> b) || b.empty() || b.size() > 10 || b.find_first_not_of("0123456789") != std::string::npos)
-      return false;
-    h->elements.emplace_back(a, std::stoll(b));
-    return h->elements.back().second <= 0x7fffffff;
-  }
-  if (word != "property" || h->elements.empty() || !(s >> a >> b)) return false;
-  if (a == "list" ? !(s >> c >> name) || !ply_type(b, true) || !ply_type(c, true) : !ply_type(a)) return false;
-  h->wide_list_count = h->wide_list_count || (a == "list" && b.find("int") != std::string::npos &&
-                                              b != "int8" && b != "uint8" && b != "int16" && b != "uint16");
-  if (h->elements.back().first == "vertex") h->vertex_properties.push_back(a == "list" ? name : b);
-  return !(s >> rest);
+  if (word != "element") return word == "property" && ply_property(s, h);
+  if (!(s >> a >> b) || b.empty() || b.size() > 10 || b.find_first_not_of("0123456789") != std::string::npos)
+    return false;
+  h->elements.push_back({a, std::stoll(b), 0});
+  return h->elements.back().count <= 0x7fffffff;
+}
+
+// A binary body must be able to hold the records the header declares: OpenMesh's reader
+// would otherwise add vertices past the end of the file, as many as the header says.
+bool binary_ply_fits(std::ifstream& in, const PlyHeader& h) {
+  const std::streamoff body = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  long long need = 0;
+  for (const PlyElement& e : h.elements) need += e.count * std::max(e.min_bytes, 1LL);
+  return body >= 0 && need <= size - body;
 }
 
 bool read_ply_header(std::ifstream& in, const std::string& path, PlyHeader* h, size_t* number, std::string* error) {
@@ -226,9 +251,10 @@ bool check_ply(std::ifstream& in, const std::string& path, DeclaredCounts* decla
   long long lines_before = 0, vertices = -1;  // data lines of the elements before "vertex"
   bool faces_follow = false;                   // the face element right after "vertex"
   for (size_t e = 0; e < h.elements.size(); ++e) {
-    const auto& [name, count] = h.elements[e];
+    const std::string& name = h.elements[e].name;
+    const long long count = h.elements[e].count;
     if (name == "face") declared->faces = count;
-    faces_follow = faces_follow || (name == "face" && e > 0 && h.elements[e - 1].first == "vertex");
+    faces_follow = faces_follow || (name == "face" && e > 0 && h.elements[e - 1].name == "vertex");
     if (vertices < 0 && name == "vertex") vertices = count;
     if (vertices < 0) lines_before += count;
   }
@@ -236,10 +262,14 @@ bool check_ply(std::ifstream& in, const std::string& path, DeclaredCounts* decla
   // OpenMesh's binary reader allocates a list's count before reading it: bound the count.
   if (!h.ascii && h.wide_list_count)
     return fail(error, path + ": binary PLY lists with 32-bit counts are not supported (use uchar or ushort)");
+  if (!h.ascii && !binary_ply_fits(in, h)) return fail(error, path + ": the file is shorter than its PLY header declares");
   if (!h.ascii || vertices <= 0) return true;
   std::string line;
   for (long long k = 0; k < lines_before && std::getline(in, line); ++k) ++number;
-  for (long long v = 0; v < vertices && std::getline(in, line); ++v) {
+  for (long long v = 0; v < vertices; ++v) {
+    if (!std::getline(in, line))
+      return fail(error, path + ": the file ends after " + std::to_string(v) + " of its " + std::to_string(vertices) +
+                             " vertices");
     ++number;
     if (!finite_numbers(line.c_str(), -1)) return bad_record(path, number, error);
   }
