@@ -154,18 +154,6 @@ TEST(Cli, InfoDescribesTestVectorsAndRefusesDamage) {
   EXPECT_NE(r.output.find("checksum"), std::string::npos) << r.output;
 }
 
-// Each triangle rotated to start at its smallest id (winding kept), then sorted.
-std::vector<std::array<uint32_t, 3>> canonical_triangles(const std::vector<uint32_t>& faces) {
-  std::vector<std::array<uint32_t, 3>> t;
-  for (size_t i = 0; i + 2 < faces.size(); i += 3) {
-    std::array<uint32_t, 3> f = {faces[i], faces[i + 1], faces[i + 2]};
-    std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
-    t.push_back(f);
-  }
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 TEST(Cli, EncodeDecodeInfoEndToEnd) {
   if (!have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found";
   TempDir dir;

@@ -4,6 +4,8 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -118,6 +120,18 @@ inline std::string square(const std::string& ext, const std::string& v1) {
 }
 // The line of square()'s second vertex in its file, counted from 1.
 inline size_t square_second_vertex_line(const std::string& ext) { return ext == "obj" ? 2 : ext == "off" ? 4 : 11; }
+
+// Each triangle rotated to start at its smallest id (winding kept), then sorted.
+inline std::vector<std::array<uint32_t, 3>> canonical_triangles(const std::vector<uint32_t>& faces) {
+  std::vector<std::array<uint32_t, 3>> t;
+  for (size_t i = 0; i + 2 < faces.size(); i += 3) {
+    std::array<uint32_t, 3> f = {faces[i], faces[i + 1], faces[i + 2]};
+    std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+    t.push_back(f);
+  }
+  std::sort(t.begin(), t.end());
+  return t;
+}
 
 // The whole content of a file ("" when it cannot be read).
 inline std::string file_text(const std::string& path) {
