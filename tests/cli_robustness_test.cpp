@@ -244,6 +244,7 @@ TEST(CliRobustness, InfoRefusesWhatDecodeRefuses) {
   EXPECT_NE(r.output.find(dir / "bad.dcrv"), std::string::npos) << r.output;
 }
 
+// Units are bytes from the file: JSON stays valid, text escapes them.
 TEST(CliRobustness, InfoPrintsUnitsThatAreNotUtf8OrHoldEscapes) {
   TempDir dir;
   ASSERT_EQ(encode_sheet(dir, small_sheet()).exit_code, 0);
