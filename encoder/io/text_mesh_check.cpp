@@ -12,6 +12,7 @@
 
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
+#include "encoder/io/ply_header.h"
 
 namespace dcurve {
 namespace {
@@ -156,92 +157,6 @@ bool check_off(std::ifstream& in, const std::string& path, DeclaredCounts* decla
     if (!finite_numbers(line.c_str(), 3)) return bad_record(path, number, error);
   }
   return check_face_records(in, faces, vertices, path, &number, error);
-}
-
-// What a PLY header declares, as far as the checks need it.
-struct PlyElement {
-  std::string name;
-  long long count = 0;
-  long long min_bytes = 0;  // the least a binary record takes (a list counted as empty)
-};
-struct PlyHeader {
-  bool ascii = false;
-  bool wide_list_count = false;  // a list whose count is wider than 16 bits
-  std::vector<PlyElement> elements;
-  std::vector<std::string> vertex_properties;
-};
-
-// Bytes of a PLY scalar type; 0 for a name that is not one (or a real type when integer_only).
-int ply_type_bytes(const std::string& t, bool integer_only = false) {
-  static const std::pair<const char*, int> kTypes[] = {
-      {"char", 1},  {"uchar", 1}, {"int8", 1},  {"uint8", 1},   {"short", 2},   {"ushort", 2},
-      {"int16", 2}, {"uint16", 2}, {"int", 4},  {"uint", 4},    {"int32", 4},   {"uint32", 4},
-      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-  for (const auto& [name, bytes] : kTypes)
-    if (t == name) return integer_only && (t[0] == 'f' || t[0] == 'd') ? 0 : bytes;
-  return 0;
-}
-
-// One property line; false when malformed or before any element.
-bool ply_property(std::istringstream& s, PlyHeader* h) {
-  std::string a, b, c, name, rest;
-  if (h->elements.empty() || !(s >> a >> b)) return false;
-  const bool list = a == "list";
-  const int bytes = list ? ply_type_bytes(b, true) : ply_type_bytes(a);
-  if (bytes == 0 || (list && (!(s >> c >> name) || ply_type_bytes(c, true) == 0)) || s >> rest) return false;
-  h->wide_list_count = h->wide_list_count || (list && bytes > 2);
-  h->elements.back().min_bytes += bytes;
-  if (h->elements.back().name == "vertex") h->vertex_properties.push_back(list ? name : b);
-  return true;
-}
-
-// One header line after "ply"; false when it is not one PLY allows (OpenMesh's PLY reader
-// crashes on some, e.g. a property before any element).
-bool ply_header_line(std::istringstream& s, const std::string& word, PlyHeader* h) {
-  std::string a, b;
-  if (word == "comment" || word == "obj_info") return true;
-  if (word == "format") {
-    if (!(s >> a >> b) || b != "1.0") return false;
-    h->ascii = a == "ascii";
-    return h->ascii || a == "binary_little_endian" || a == "binary_big_endian";
-  }
-  if (word != "element") return word == "property" && ply_property(s, h);
-  if (!(s >> a >> b) || b.empty() || b.size() > 10 || b.find_first_not_of("0123456789") != std::string::npos)
-    return false;
-  h->elements.push_back({a, std::stoll(b), 0});
-  return h->elements.back().count <= 0x7fffffff;
-}
-
-// A binary body must be able to hold the records the header declares: OpenMesh's reader
-// would otherwise add vertices past the end of the file, as many as the header says.
-bool binary_ply_fits(std::ifstream& in, const PlyHeader& h) {
-  const std::streamoff body = in.tellg();
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  long long need = 0;
-  for (const PlyElement& e : h.elements) need += e.count * std::max(e.min_bytes, 1LL);
-  return body >= 0 && need <= size - body;
-}
-
-bool read_ply_header(std::ifstream& in, const std::string& path, PlyHeader* h, size_t* number, std::string* error) {
-  std::string line, word;
-  for (*number = 0; std::getline(in, line);) {
-    ++*number;
-    std::istringstream s(line);
-    if (!(s >> word) && *number > 1) continue;
-    if (*number == 1) {
-      if (word != "ply") return fail(error, path + ": not a PLY file (no \"ply\" line)");
-      continue;
-    }
-    if (word == "end_header") {
-      for (const char* axis : {"x", "y", "z"})
-        if (std::find(h->vertex_properties.begin(), h->vertex_properties.end(), axis) == h->vertex_properties.end())
-          return fail(error, path + ": the PLY vertex element has no " + axis + " property");
-      return true;
-    }
-    if (!ply_header_line(s, word, h)) return fail(error, path + ": line " + std::to_string(*number) + ": malformed PLY header");
-  }
-  return fail(error, path + ": the PLY header has no end_header");
 }
 
 bool check_ply(std::ifstream& in, const std::string& path, DeclaredCounts* declared, std::string* error) {
