@@ -134,7 +134,7 @@ TEST(Cli, InfoDescribesTestVectorsAndRefusesDamage) {
   CommandResult r = run_cli("info --json " + vectors + "pde_segments.dcrv");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* key : {"\"vertices\":6", "\"frames\":9", "\"faces\":4", "\"pde8\":12", "\"pde32\":3",
-                          "\"version\":\"3.0\"", "\"mode\":\"displacement\""})
+                          "\"version\":\"3.1\"", "\"mode\":\"displacement\""})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " in " << r.output;
   r = run_cli("info --json " + vectors + "sheet_traversal_faces.dcrv");
   EXPECT_NE(r.output.find("\"face_layout\":\"traversal\""), std::string::npos) << r.output;
