@@ -175,14 +175,9 @@ TEST(CliIo, NotGltfAtAllIsRefusedNamingTheFile) {
   EXPECT_EQ(r.output.rfind("dcurve encode: " + dir / "junk.glb: cannot read glTF", 0), 0u) << r.output;
 }
 
-// A triangle at z = `z` in OBJ.
-void write_triangle(const std::string& path, double z) {
-  std::ofstream(path) << "v 0 0 " << z << "\nv 1 0 " << z << "\nv 0 1 " << z << "\nf 1 2 3\n";
-}
-
 TEST(CliIo, PointCacheThatDoesNotFitItsMeshIsRefused) {
   TempDir dir;
-  write_triangle(dir / "rest.obj", 0);
+  write_triangle_obj(dir / "rest.obj", 0);
   std::ofstream(dir / "quad.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
   // A PC2 of 3 vertices and 2 frames, and one cut short.
   std::vector<uint8_t> pc2(32 + 72, 0);
@@ -210,7 +205,7 @@ TEST(CliIo, PointCacheThatDoesNotFitItsMeshIsRefused) {
 TEST(CliIo, FolderFramesInNumberOrderAndGapsNamed) {
   TempDir dir;
   fs::create_directory(dir / "anim");
-  for (int i = 1; i <= 10; ++i) write_triangle(dir / ("anim/anim." + std::to_string(i) + ".obj"), 0.1 * i);
+  for (int i = 1; i <= 10; ++i) write_triangle_obj(dir / ("anim/anim." + std::to_string(i) + ".obj"), 0.1 * i);
   CommandResult r = run_cli("encode " + dir / "anim -o " + dir / "a.dcrv --fps 24 -q");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ASSERT_EQ(run_cli("decode " + dir / "a.dcrv -o " + dir / "out").exit_code, 0);
@@ -224,8 +219,8 @@ TEST(CliIo, FolderFramesInNumberOrderAndGapsNamed) {
   r = run_cli("encode " + dir / "anim -o " + dir / "b.dcrv");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("frame 5 missing between anim.4.obj and anim.6.obj"), std::string::npos) << r.output;
-  write_triangle(dir / "anim/anim.5.obj", 0.5);
-  write_triangle(dir / "anim/anim.05.obj", 0.5);
+  write_triangle_obj(dir / "anim/anim.5.obj", 0.5);
+  write_triangle_obj(dir / "anim/anim.05.obj", 0.5);
   r = run_cli("encode " + dir / "anim -o " + dir / "b.dcrv");
   EXPECT_NE(r.output.find("anim.05.obj and anim.5.obj are both frame 5"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "b.dcrv"));
@@ -242,7 +237,7 @@ std::vector<std::string> listing(const std::string& dir) {
 TEST(CliIo, FolderOutputIsNeverAStaleMix) {
   TempDir dir;
   fs::create_directory(dir / "anim");
-  for (int i = 0; i < 6; ++i) write_triangle(dir / ("anim/f" + std::to_string(i) + ".obj"), 0.1 * i);
+  for (int i = 0; i < 6; ++i) write_triangle_obj(dir / ("anim/f" + std::to_string(i) + ".obj"), 0.1 * i);
   ASSERT_EQ(run_cli("encode " + dir / "anim -o " + dir / "a.dcrv --chunk-frames 2").exit_code, 0);
   ASSERT_EQ(run_cli("decode " + dir / "a.dcrv -o " + dir / "out").exit_code, 0);
   EXPECT_EQ(listing(dir / "out").size(), 6u);
@@ -273,7 +268,7 @@ TEST(CliIo, FolderOutputIsNeverAStaleMix) {
 TEST(CliIo, ManyFramesStreamOrAreRefusedUpFront) {
   TempDir dir;
   fs::create_directory(dir / "anim");
-  for (int i = 0; i < 3; ++i) write_triangle(dir / ("anim/f" + std::to_string(i) + ".obj"), 0.1 * i);
+  for (int i = 0; i < 3; ++i) write_triangle_obj(dir / ("anim/f" + std::to_string(i) + ".obj"), 0.1 * i);
   ASSERT_EQ(run_cli("encode " + dir / "anim -o " + dir / "a.dcrv").exit_code, 0);
   // glTF holds every frame as a target and weights growing with frames squared: refused
   // before decoding rather than running out of memory.
@@ -290,7 +285,7 @@ TEST(CliIo, ManyFramesStreamOrAreRefusedUpFront) {
 TEST(CliIo, OutputFolderIsCheckedBeforeTheWork) {
   TempDir dir;
   fs::create_directory(dir / "anim");
-  for (int i = 0; i < 2; ++i) write_triangle(dir / ("anim/f" + std::to_string(i) + ".obj"), 0.1 * i);
+  for (int i = 0; i < 2; ++i) write_triangle_obj(dir / ("anim/f" + std::to_string(i) + ".obj"), 0.1 * i);
   CommandResult r = run_cli("encode " + dir / "anim -o " + dir / "nowhere/a.dcrv");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("nowhere/a.dcrv: folder"), std::string::npos) << r.output;

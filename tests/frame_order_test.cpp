@@ -2,8 +2,6 @@
 // repeated number or a stray unnumbered file is an error naming the files.
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 #include "encoder/io/frame_order.h"
 #include "encoder/io/frames.h"
 #include "test_util.h"
@@ -11,14 +9,9 @@
 namespace dcurve::test {
 namespace {
 
-// A triangle lifted to z = `z`, so each frame says which file it came from.
-void write_triangle(const std::string& path, int z) {
-  std::ofstream(path) << "v 0 0 " << z << "\nv 1 0 " << z << "\nv 0 1 " << z << "\nf 1 2 3\n";
-}
-
 TEST(FrameOrder, UnpaddedNumbersReadInNumberOrder) {
   TempDir dir;
-  for (int i = 1; i <= 12; ++i) write_triangle(dir / ("anim." + std::to_string(i) + ".obj"), i);
+  for (int i = 1; i <= 12; ++i) write_triangle_obj(dir / ("anim." + std::to_string(i) + ".obj"), i);
   Animation anim;
   std::string err;
   ASSERT_TRUE(read_frame_folder(dir.path.string(), &anim, &err)) << err;
