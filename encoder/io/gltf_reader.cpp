@@ -3,6 +3,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "codec/common/error.h"
@@ -23,6 +24,7 @@ bool load_model(const std::string& path, tinygltf::Model* model, std::string* er
   std::string err, warn;
   const bool ok = lowercase_extension(path) == ".glb" ? loader.LoadBinaryFromFile(model, &err, &warn, path)
                                                       : loader.LoadASCIIFromFile(model, &err, &warn, path);
+  while (!err.empty() && std::isspace(static_cast<unsigned char>(err.back()))) err.pop_back();  // tinygltf ends lines with \n
   if (!ok) return fail(error, "cannot read glTF: " + (err.empty() ? std::string("malformed file") : err));
   return true;
 }
