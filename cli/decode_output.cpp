@@ -1,5 +1,6 @@
 #include "cli/decode_output.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -109,6 +110,7 @@ std::vector<fs::path> mesh_files_in(const std::string& dir) {
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec))
     if (is_mesh_extension(lowercase_extension(e.path().string()))) found.push_back(e.path());
+  std::sort(found.begin(), found.end());  // the message names the first
   return found;
 }
 
