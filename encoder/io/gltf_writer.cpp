@@ -95,7 +95,10 @@ void add_weights_animation(Builder* b, uint32_t frames, double fps) {
 
 GltfWriter::GltfWriter(uint32_t vertex_count, std::vector<uint32_t> faces, uint32_t frame_count, double frame_rate)
     : vertex_count_(vertex_count), frame_count_(frame_count), frame_rate_(frame_rate > 0 ? frame_rate : 30.0),
-      faces_(std::move(faces)) {}
+      faces_(std::move(faces)) {
+  // Held whole (the file holds every frame): reserved once so growth never doubles it.
+  if (frame_count > 1) targets_.reserve(size_t(frame_count - 1) * vertex_count * 3);
+}
 
 bool GltfWriter::check_size(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, std::string* error) {
   const uint64_t n = frame_count;
