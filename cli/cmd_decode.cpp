@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "cli/commands.h"
@@ -96,6 +97,10 @@ Action add_decode(CLI::App& app) {
   app.add_flag("--force", o->force, "Replace the mesh files (.obj/.ply/.off) of an output folder that already holds some");
   msg->add_flags(app);
   return [o, msg]() {
+    if (!std::isfinite(o->seconds)) {  // CLI11's range checks let "nan" through
+      std::fprintf(stderr, "dcurve decode: --time must be a number of seconds\n");
+      return 2;
+    }
     const bool one_mesh = output_kind(o->output) == OutputKind::Mesh;
     if (one_mesh && o->t < 0 && o->seconds < 0 && o->frames != 1) {
       std::fprintf(stderr, "dcurve decode: %s is one mesh: choose its time with --t T or --time SECONDS\n", o->output.c_str());

@@ -1,5 +1,6 @@
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 
 #include "cli/commands.h"
@@ -88,6 +89,10 @@ Action add_encode(CLI::App& app) {
   return [o, msg]() {
     Animation anim;
     std::string err;
+    if (!std::isfinite(o->input_options.fps)) {  // CLI11's range checks let "nan" through
+      std::fprintf(stderr, "dcurve encode: --fps must be a number\n");
+      return 2;
+    }
     if (!check_output_file(o->output, &err)) return msg->error(err);
     if (!load_animation_input(o->input, o->input_options, msg->progress("simulate"), &anim, &err))
       return msg->error(err);

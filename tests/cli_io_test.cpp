@@ -80,6 +80,9 @@ TEST(CliIo, GltfFixtureEncodesAndOneMeshDecodes) {
   r = run_cli("decode " + dir / "ok.dcrv -o " + dir / "late.obj --time 0.6");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("past its end"), std::string::npos) << r.output;
+  EXPECT_EQ(run_cli("decode " + dir / "ok.dcrv -o " + dir / "nan.obj --time nan").exit_code, 2);
+  EXPECT_EQ(run_cli("encode " + dir / "ok.gltf -o " + dir / "nan.dcrv --fps nan").exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir / "nan.obj") || fs::exists(dir / "nan.dcrv"));
   // One mesh needs a time.
   r = run_cli("decode " + dir / "ok.dcrv -o " + dir / "which.obj");
   EXPECT_EQ(r.exit_code, 2);
