@@ -97,8 +97,8 @@ Action add_decode(CLI::App& app) {
   app.add_flag("--force", o->force, "Replace the mesh files (.obj/.ply/.off) of an output folder that already holds some");
   msg->add_flags(app);
   return [o, msg]() {
-    if (!std::isfinite(o->seconds)) {  // CLI11's range checks let "nan" through
-      std::fprintf(stderr, "dcurve decode: --time must be a number of seconds\n");
+    if (!std::isfinite(o->seconds) || !std::isfinite(o->t)) {  // CLI11's range checks let "nan" through
+      std::fprintf(stderr, "dcurve decode: --t and --time must be numbers\n");
       return 2;
     }
     const bool one_mesh = output_kind(o->output) == OutputKind::Mesh;

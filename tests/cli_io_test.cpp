@@ -81,6 +81,7 @@ TEST(CliIo, GltfFixtureEncodesAndOneMeshDecodes) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("past its end"), std::string::npos) << r.output;
   EXPECT_EQ(run_cli("decode " + dir / "ok.dcrv -o " + dir / "nan.obj --time nan").exit_code, 2);
+  EXPECT_EQ(run_cli("decode " + dir / "ok.dcrv -o " + dir / "nan.obj --t nan").exit_code, 2);
   EXPECT_EQ(run_cli("encode " + dir / "ok.gltf -o " + dir / "nan.dcrv --fps nan").exit_code, 2);
   EXPECT_FALSE(fs::exists(dir / "nan.obj") || fs::exists(dir / "nan.dcrv"));
   // One mesh needs a time.
