@@ -1,9 +1,11 @@
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 
 #include "cli/commands.h"
-#include "cli/progress.h"
+#include "cli/decode_output.h"
+#include "cli/messages.h"
 #include "encoder/curves/report_json.h"
 #include "encoder/encoder.h"
 #include "encoder/input.h"
@@ -15,14 +17,26 @@ Action add_encode(CLI::App& app) {
   struct Opts {
     std::string input, output;
     double tolerance = 1e-3;
-    bool json = false, no_connectivity = false, exact_faces = false, keep_all_motions = false;
+    bool json = false, no_connectivity = false, reorder_faces = false, keep_all_motions = false;
+    InputOptions input_options;
     int threads = 0, effort = EncodeOptions().effort;
     std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto", chunk_frames = "auto";
     uint32_t curve_points = 64;
   };
   auto o = std::make_shared<Opts>();
-  app.add_option("input", o->input, "Folder of frames (OBJ/PLY/OFF, sorted by name) or a scene file (.json)")
+  auto msg = std::make_shared<Messages>("encode");
+  app.add_option("input", o->input,
+                 "A folder of frames (OBJ/PLY/OFF, in frame-number order), a glTF file (.glb/.gltf: one mesh "
+                 "with morph targets and a weights animation), a point cache (.pc2/.mdd, with --mesh) or a "
+                 "scene file (.json)")
       ->required();
+  app.add_option("--mesh", o->input_options.rest_mesh,
+                 "For a point cache: the mesh (OBJ/PLY/OFF) whose faces it animates; same vertex count and order");
+  app.add_option("--gltf-mesh", o->input_options.gltf_mesh, "For a glTF file holding several meshes: which one (index)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--fps", o->input_options.fps,
+                 "Frames per second (default: the input's own rate where it has one, else 30)")
+      ->check(CLI::Range(1e-3, 1e6));
   app.add_option("-o,--output", o->output, "Output .dcrv file")->required();
   app.add_option("--tolerance", o->tolerance, "Max error, fraction of the rest-pose bounding-box diagonal")
       ->check(CLI::Range(1e-7, 0.5))
@@ -64,24 +78,31 @@ Action add_encode(CLI::App& app) {
   app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")
       ->check(CLI::Range(2, 1000000))
       ->capture_default_str();
-  app.add_flag("--exact-face-order", o->exact_faces,
-               "Store triangles in the input's order and corner rotation (default: the face coder's "
-               "traversal order, same triangles and vertex ids, smaller)");
+  app.add_flag("--reorder-faces", o->reorder_faces,
+               "Store the triangles in the face coder's traversal order (same triangles, windings and vertex "
+               "ids, 1.5-2x smaller faces); default: the input's face list as given");
   app.add_flag("--no-connectivity", o->no_connectivity, "Leave faces out of the file (the engine has the mesh)");
   app.add_option("--threads", o->threads, "Worker threads, 0 = all cores (output is the same for any count)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--json", o->json, "Print one JSON object with the encode summary on stdout");
-  return [o]() {
+  msg->add_flags(app);
+  return [o, msg]() {
     Animation anim;
     std::string err;
-    if (!load_animation_input(o->input, false, progress_bar("simulate"), &anim, &err)) {
-      std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
-      return 1;
+    if (!std::isfinite(o->input_options.fps)) {  // CLI11's range checks let "nan" through
+      std::fprintf(stderr, "dcurve encode: --fps must be a number\n");
+      return 2;
     }
+    if (!check_output_file(o->output, &err)) return msg->error(err);
+    if (!load_animation_input(o->input, o->input_options, msg->progress("simulate"), &anim, &err))
+      return msg->error(err);
+    msg->detail("read " + std::to_string(anim.frames.size()) + " frames of " + std::to_string(anim.vertex_count) +
+                " vertices, " + std::to_string(anim.faces.size() / 3) + " triangles, " +
+                std::to_string(anim.frame_rate) + " fps from " + o->input);
     EncodeOptions eo;
     eo.tolerance = o->tolerance;
     eo.connectivity = !o->no_connectivity;
-    eo.exact_face_order = o->exact_faces;
+    eo.exact_face_order = !o->reorder_faces;
     eo.threads = o->threads;
     eo.model = o->model == "pde8"    ? ModelChoice::Pde8
                : o->model == "pde32" ? ModelChoice::Pde32
@@ -94,17 +115,11 @@ Action add_encode(CLI::App& app) {
     eo.chunk_frames = o->chunk_frames == "auto" ? 0 : uint32_t(std::stoul(o->chunk_frames));
     eo.keep_all_motions = o->keep_all_motions;
     eo.curve_points = o->curve_points;
-    eo.progress = progress_bar("encode");
+    eo.progress = msg->progress("encode");
     std::vector<uint8_t> bytes;
     EncodeReport rep;
-    if (!encode_animation(anim, eo, &bytes, &rep, &err)) {
-      std::fprintf(stderr, "dcurve encode: %s: %s\n", o->input.c_str(), err.c_str());
-      return 1;
-    }
-    if (!write_file_atomic(o->output, bytes.data(), bytes.size(), &err)) {
-      std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
-      return 1;
-    }
+    if (!encode_animation(anim, eo, &bytes, &rep, &err)) return msg->error(o->input + ": " + err);
+    if (!write_file_atomic(o->output, bytes.data(), bytes.size(), &err)) return msg->error(err);
     nlohmann::json j = {{"input", o->input},
                         {"output", o->output},
                         {"tolerance", o->tolerance},
@@ -130,9 +145,9 @@ Action add_encode(CLI::App& app) {
                         {"low_rank_bytes", rep.low_rank_bytes},
                         {"curve_fallback", rep.curve_fallback}};
     j.update(curve_report_json(rep.curves));
-    if (o->json) {
+    if (o->json) {  // asked for explicitly: printed even with -q
       std::printf("%s\n", j.dump().c_str());
-    } else {
+    } else if (!msg->quiet()) {
       std::printf("%s: %llu bytes, %u vertices x %u frames, %.3f bits/vertex/frame, max error %.3g (tolerance %.3g), "
                   "%.2f s\n",
                   o->output.c_str(), (unsigned long long)rep.bytes, rep.vertices, rep.frames, rep.bpvf,

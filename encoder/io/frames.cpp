@@ -12,6 +12,7 @@
 
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
+#include "encoder/io/frame_order.h"
 #include "encoder/io/text_mesh_check.h"
 
 namespace dcurve {
@@ -115,7 +116,7 @@ bool read_frame_folder(const std::string& dir, Animation* anim, std::string* err
   }
   if (ec) return fail(error, dir + ": " + ec.message());
   if (files.empty()) return fail(error, dir + ": no .obj, .ply or .off frames found");
-  std::sort(files.begin(), files.end());
+  if (!order_frame_files(&files, error)) return false;
   *anim = Animation{};
   for (size_t f = 0; f < files.size(); ++f) {
     std::vector<float> xyz;

@@ -23,7 +23,7 @@ bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uin
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
                 const std::vector<uint32_t>& faces, std::string* error);
 
-// Reads every .obj/.ply/.off file of `dir` in name order. All frames must have the same
+// Reads every .obj/.ply/.off file of `dir` in frame-number order (encoder/io/frame_order.h). All frames must have the same
 // vertex count and face list, and finite coordinates.
 bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error);
 
