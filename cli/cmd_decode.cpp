@@ -1,57 +1,112 @@
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 #include "cli/commands.h"
-#include "cli/number_range.h"
+#include "cli/decode_output.h"
+#include "cli/messages.h"
+#include "codec/common/error.h"
 #include "decoder/dcurve.hpp"
-#include "encoder/io/frames.h"
 
 namespace dcurve::cli {
+namespace {
+
+struct DecodeOpts {
+  std::string input, output, format = "obj";
+  int frames = 0;
+  double t = -1, seconds = -1;
+  bool force = false;
+};
+
+// The times to decode: --t, --time (seconds from frame 0), or N frames spread over [0, 1].
+bool decode_times(const DecodeOpts& o, const Decoder& dec, std::vector<double>* times, std::string* error) {
+  const uint32_t stored = dec.frame_count();
+  if (o.seconds >= 0) {
+    const double duration = stored > 1 && dec.frame_rate() > 0 ? (stored - 1) / dec.frame_rate() : 0;
+    if (duration <= 0) return fail(error, o.input + ": holds no frame rate or a single frame; use --t");
+    if (o.seconds > duration * (1 + 1e-9))
+      return fail(error, o.input + ": --time " + std::to_string(o.seconds) + " s is past its end, " +
+                             std::to_string(duration) + " s");
+    times->push_back(std::min(1.0, o.seconds / duration));
+  } else if (o.t >= 0) {
+    times->push_back(o.t);
+  } else {
+    const uint32_t n = o.frames > 0 ? uint32_t(o.frames) : stored;
+    times->reserve(n);
+    for (uint32_t i = 0; i < n; ++i) times->push_back(n > 1 ? double(i) / (n - 1) : 0.0);
+  }
+  return true;
+}
+
+OutputSpec output_spec(const DecodeOpts& o, const Decoder& dec, uint32_t frames) {
+  OutputSpec spec;
+  spec.path = o.output;
+  spec.folder_format = o.format;
+  spec.force = o.force;
+  spec.vertex_count = dec.vertex_count();
+  if (dec.faces()) spec.faces.assign(dec.faces(), dec.faces() + 3 * size_t(dec.face_count()));
+  spec.frame_count = frames;
+  // Frames at i/(N-1) of the clip: the rate that keeps the clip's duration.
+  const double duration = dec.frame_count() > 1 && dec.frame_rate() > 0 ? (dec.frame_count() - 1) / dec.frame_rate() : 0;
+  spec.frame_rate = frames > 1 && duration > 0 ? (frames - 1) / duration : dec.frame_rate();
+  return spec;
+}
+
+// Decodes and writes one frame at a time: memory holds one frame whatever the count.
+int run_decode(const DecodeOpts& o, const Messages& msg) {
+  std::string err;
+  auto dec = Decoder::open_file(o.input, &err);
+  if (!dec) return msg.error(err);
+  std::vector<double> times;
+  if (!decode_times(o, *dec, &times, &err)) return msg.error(err);
+  auto sink = open_output(output_spec(o, *dec, uint32_t(times.size())), &err);
+  if (!sink) return msg.error(err);
+  std::vector<float> xyz(size_t(dec->vertex_count()) * 3);
+  auto cursor = dec->make_cursor();
+  auto progress = msg.progress("decode");
+  for (size_t i = 0; i < times.size(); ++i) {
+    Error e;
+    if (!cursor->evaluate(times[i], xyz.data(), &e)) return msg.error(o.input + ": " + e.message);
+    if (!sink->add(uint32_t(i), xyz.data(), &err)) return msg.error(err);
+    if (progress) progress(double(i + 1) / double(times.size()));
+  }
+  if (!sink->finish(&err)) return msg.error(err);
+  msg.detail("wrote " + std::to_string(times.size()) + " frame(s) of " + std::to_string(dec->vertex_count()) +
+             " vertices to " + o.output);
+  return 0;
+}
+
+}  // namespace
 
 Action add_decode(CLI::App& app) {
-  struct Opts {
-    std::string input, output, format = "obj";
-    int frames = 0;
-    double t = -1;
-  };
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<DecodeOpts>();
+  auto msg = std::make_shared<Messages>("decode");
   app.add_option("input", o->input, ".dcrv file")->required();
-  app.add_option("-o,--output", o->output, "Output folder (frame_00000.obj, ...)")->required();
+  app.add_option("-o,--output", o->output,
+                 "Output: a folder (frame_00000.obj, ...), one mesh (.obj/.ply/.off, with --t or --time), a glTF "
+                 "file (.glb/.gltf: morph targets and a weights animation) or a point cache (.pc2/.mdd)")
+      ->required();
   auto* frames = app.add_option("--frames", o->frames, "Write N frames at t = i/(N-1) (default: the stored frame count)")
                      ->check(CLI::Range(1, 1000000));
-  auto* t = app.add_option("--t", o->t, "Write one mesh at time T in [0,1]")->check(finite_range(0.0, 1.0));
-  frames->excludes(t);
-  app.add_option("--format", o->format, "Mesh format")->check(CLI::IsMember({"obj", "ply"}))->capture_default_str();
-  return [o]() {
-    std::string err;
-    auto dec = Decoder::open_file(o->input, &err);
-    if (!dec) {
-      std::fprintf(stderr, "dcurve decode: %s\n", err.c_str());
-      return 1;
+  auto* t = app.add_option("--t", o->t, "Write one mesh at time T in [0,1]")->check(CLI::Range(0.0, 1.0));
+  auto* seconds = app.add_option("--time", o->seconds, "Write one mesh at SECONDS from the first frame (at the file's frame rate)")
+                      ->check(CLI::NonNegativeNumber);
+  frames->excludes(t)->excludes(seconds);
+  t->excludes(seconds);
+  app.add_option("--format", o->format, "Frame format in a folder output")->check(CLI::IsMember({"obj", "ply"}))->capture_default_str();
+  app.add_flag("--force", o->force, "Replace the mesh files (.obj/.ply/.off) of an output folder that already holds some");
+  msg->add_flags(app);
+  return [o, msg]() {
+    if (!std::isfinite(o->seconds) || !std::isfinite(o->t)) {  // CLI11's range checks let "nan" through
+      std::fprintf(stderr, "dcurve decode: --t and --time must be numbers\n");
+      return 2;
     }
-    Animation out;
-    out.vertex_count = dec->vertex_count();
-    if (dec->faces()) out.faces.assign(dec->faces(), dec->faces() + 3 * size_t(dec->face_count()));
-    std::vector<double> times;
-    if (o->t >= 0) {
-      times.push_back(o->t);
-    } else {
-      int n = o->frames > 0 ? o->frames : int(dec->frame_count());
-      for (int i = 0; i < n; ++i) times.push_back(n > 1 ? double(i) / (n - 1) : 0.0);
+    const bool one_mesh = output_kind(o->output) == OutputKind::Mesh;
+    if (one_mesh && o->t < 0 && o->seconds < 0 && o->frames != 1) {
+      std::fprintf(stderr, "dcurve decode: %s is one mesh: choose its time with --t T or --time SECONDS\n", o->output.c_str());
+      return 2;
     }
-    Error e;
-    for (double tt : times) {
-      out.frames.emplace_back(size_t(out.vertex_count) * 3);
-      if (!dec->evaluate(tt, out.frames.back().data(), &e)) {
-        std::fprintf(stderr, "dcurve decode: %s: %s\n", o->input.c_str(), e.message.c_str());
-        return 1;
-      }
-    }
-    if (!write_frame_folder(o->output, out, o->format, &err)) {
-      std::fprintf(stderr, "dcurve decode: %s\n", err.c_str());
-      return 1;
-    }
-    return 0;
+    return run_decode(*o, *msg);
   };
 }
 

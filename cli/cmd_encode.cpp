@@ -1,10 +1,13 @@
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "cli/commands.h"
+#include "cli/decode_output.h"
+#include "cli/messages.h"
 #include "cli/number_range.h"
-#include "cli/progress.h"
 #include "encoder/curves/report_json.h"
 #include "encoder/encoder.h"
 #include "encoder/input.h"
@@ -14,21 +17,28 @@
 namespace dcurve::cli {
 namespace {
 
-// The files an encode of `input` reads: a folder's frames, or a scene file and its surface.
-std::vector<std::string> input_files(const std::string& input) {
+// The files an encode of `input` reads: a folder's frames, or the input file (glTF, point
+// cache, scene) with a point cache's mesh or a scene's surface.
+std::vector<std::string> input_files(const std::string& input, const std::string& rest_mesh) {
   std::vector<std::string> files;
   std::string ignored;  // an unreadable input is reported when it is loaded
-  if (list_frame_files(input, &files, &ignored)) return files;
+  std::error_code ec;
+  if (std::filesystem::is_directory(input, ec)) {
+    if (!list_frame_files(input, &files, &ignored)) files.clear();
+    return files;
+  }
   files = {input};
+  if (!rest_mesh.empty()) files.push_back(rest_mesh);
   Scene scene;
   if (load_scene_file(input, &scene, &ignored) && !scene.mesh_file.empty()) files.push_back(scene.mesh_file);
   return files;
 }
 
 // Refuses, before a long encode, an output that cannot be replaced or is one of the inputs.
-bool check_encode_output(const std::string& input, const std::string& output, std::string* error) {
+bool check_encode_output(const std::string& input, const std::string& rest_mesh, const std::string& output,
+                         std::string* error) {
   if (!check_output_path(output, error)) return false;
-  if (!is_one_of(output, input_files(input))) return true;
+  if (!is_one_of(output, input_files(input, rest_mesh))) return true;
   *error = output + ": the output is one of the input files; refusing to overwrite it";
   return false;
 }
@@ -39,14 +49,26 @@ Action add_encode(CLI::App& app) {
   struct Opts {
     std::string input, output;
     double tolerance = 1e-3;
-    bool json = false, no_connectivity = false, exact_faces = false, keep_all_motions = false;
+    bool json = false, no_connectivity = false, reorder_faces = false, keep_all_motions = false;
+    InputOptions input_options;
     int threads = 0, effort = EncodeOptions().effort;
     std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto", chunk_frames = "auto";
     uint32_t curve_points = 64;
   };
   auto o = std::make_shared<Opts>();
-  app.add_option("input", o->input, "Folder of frames (OBJ/PLY/OFF, sorted by name) or a scene file (.json)")
+  auto msg = std::make_shared<Messages>("encode");
+  app.add_option("input", o->input,
+                 "A folder of frames (OBJ/PLY/OFF, in frame-number order), a glTF file (.glb/.gltf: one mesh "
+                 "with morph targets and a weights animation), a point cache (.pc2/.mdd, with --mesh) or a "
+                 "scene file (.json)")
       ->required();
+  app.add_option("--mesh", o->input_options.rest_mesh,
+                 "For a point cache: the mesh (OBJ/PLY/OFF) whose faces it animates; same vertex count and order");
+  app.add_option("--gltf-mesh", o->input_options.gltf_mesh, "For a glTF file holding several meshes: which one (index)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--fps", o->input_options.fps,
+                 "Frames per second (default: the input's own rate where it has one, else 30)")
+      ->check(CLI::Range(1e-3, 1e6));
   app.add_option("-o,--output", o->output, "Output .dcrv file")->required();
   app.add_option("--tolerance", o->tolerance, "Max error, fraction of the rest-pose bounding-box diagonal")
       ->check(finite_range(kMinTolerance, 0.5))
@@ -88,28 +110,32 @@ Action add_encode(CLI::App& app) {
   app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")
       ->check(CLI::Range(2, 1000000))
       ->capture_default_str();
-  app.add_flag("--exact-face-order", o->exact_faces,
-               "Store triangles in the input's order and corner rotation (default: the face coder's "
-               "traversal order, same triangles and vertex ids, smaller)");
+  app.add_flag("--reorder-faces", o->reorder_faces,
+               "Store the triangles in the face coder's traversal order (same triangles, windings and vertex "
+               "ids, 1.5-2x smaller faces); default: the input's face list as given");
   app.add_flag("--no-connectivity", o->no_connectivity, "Leave faces out of the file (the engine has the mesh)");
   app.add_option("--threads", o->threads, "Worker threads, 0 = all cores (output is the same for any count)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--json", o->json, "Print one JSON object with the encode summary on stdout");
-  return [o]() {
+  msg->add_flags(app);
+  return [o, msg]() {
     Animation anim;
     std::string err;
-    if (!check_encode_output(o->input, o->output, &err)) {
-      std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
-      return 1;
+    if (!std::isfinite(o->input_options.fps)) {  // CLI11's range checks let "nan" through
+      std::fprintf(stderr, "dcurve encode: --fps must be a number\n");
+      return 2;
     }
-    if (!load_animation_input(o->input, false, progress_bar("simulate"), &anim, &err)) {
-      std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
-      return 1;
-    }
+    if (!check_output_file(o->output, &err)) return msg->error(err);
+    if (!check_encode_output(o->input, o->input_options.rest_mesh, o->output, &err)) return msg->error(err);
+    if (!load_animation_input(o->input, o->input_options, msg->progress("simulate"), &anim, &err))
+      return msg->error(err);
+    msg->detail("read " + std::to_string(anim.frames.size()) + " frames of " + std::to_string(anim.vertex_count) +
+                " vertices, " + std::to_string(anim.faces.size() / 3) + " triangles, " +
+                std::to_string(anim.frame_rate) + " fps from " + o->input);
     EncodeOptions eo;
     eo.tolerance = o->tolerance;
     eo.connectivity = !o->no_connectivity;
-    eo.exact_face_order = o->exact_faces;
+    eo.exact_face_order = !o->reorder_faces;
     eo.threads = o->threads;
     eo.model = o->model == "pde8"    ? ModelChoice::Pde8
                : o->model == "pde32" ? ModelChoice::Pde32
@@ -122,17 +148,11 @@ Action add_encode(CLI::App& app) {
     eo.chunk_frames = o->chunk_frames == "auto" ? 0 : uint32_t(std::stoul(o->chunk_frames));
     eo.keep_all_motions = o->keep_all_motions;
     eo.curve_points = o->curve_points;
-    eo.progress = progress_bar("encode");
+    eo.progress = msg->progress("encode");
     std::vector<uint8_t> bytes;
     EncodeReport rep;
-    if (!encode_animation(anim, eo, &bytes, &rep, &err)) {
-      std::fprintf(stderr, "dcurve encode: %s: %s\n", o->input.c_str(), err.c_str());
-      return 1;
-    }
-    if (!write_file_atomic(o->output, bytes.data(), bytes.size(), &err)) {
-      std::fprintf(stderr, "dcurve encode: %s\n", err.c_str());
-      return 1;
-    }
+    if (!encode_animation(anim, eo, &bytes, &rep, &err)) return msg->error(o->input + ": " + err);
+    if (!write_file_atomic(o->output, bytes.data(), bytes.size(), &err)) return msg->error(err);
     nlohmann::json j = {{"input", o->input},
                         {"output", o->output},
                         {"tolerance", o->tolerance},
@@ -158,9 +178,9 @@ Action add_encode(CLI::App& app) {
                         {"low_rank_bytes", rep.low_rank_bytes},
                         {"curve_fallback", rep.curve_fallback}};
     j.update(curve_report_json(rep.curves));
-    if (o->json) {
+    if (o->json) {  // asked for explicitly: printed even with -q
       std::printf("%s\n", j.dump().c_str());
-    } else {
+    } else if (!msg->quiet()) {
       std::printf("%s: %llu bytes, %u vertices x %u frames, %.3f bits/vertex/frame, max error %.3g (tolerance %.3g), "
                   "%.2f s\n",
                   o->output.c_str(), (unsigned long long)rep.bytes, rep.vertices, rep.frames, rep.bpvf,

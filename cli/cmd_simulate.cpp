@@ -2,7 +2,7 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "cli/progress.h"
+#include "cli/messages.h"
 #include "encoder/sim/scene.h"
 
 namespace dcurve::cli {
@@ -14,6 +14,7 @@ Action add_simulate(CLI::App& app) {
     int frames = 0;
   };
   auto o = std::make_shared<Opts>();
+  auto msg = std::make_shared<Messages>("simulate");
   auto* file = app.add_option("scene", o->scene_file, "Scene file (.json)");
   auto* name = app.add_option("--scene", o->scene_name, "Built-in scene name (see --list)");
   file->excludes(name);
@@ -21,7 +22,8 @@ Action add_simulate(CLI::App& app) {
   app.add_option("-o,--output", o->output, "Output folder for frame_00000.obj, ...");
   app.add_option("--frames", o->frames, "Override the scene's frame count (>= 1)")->check(CLI::PositiveNumber);
   app.add_flag("--list", o->list, "List the built-in scenes and exit");
-  return [o]() {
+  msg->add_flags(app);
+  return [o, msg]() {
     if (o->list) {
       for (const auto& n : builtin_scene_names()) std::printf("%s\n", n.c_str());
       return 0;
@@ -34,20 +36,13 @@ Action add_simulate(CLI::App& app) {
     std::string err;
     const bool ok = o->scene_file.empty() ? builtin_scene(o->scene_name, &scene, &err)
                                           : load_scene_file(o->scene_file, &scene, &err);
-    if (!ok) {
-      std::fprintf(stderr, "dcurve simulate: %s\n", err.c_str());
-      return 1;
-    }
+    if (!ok) return msg->error(err);
     if (o->frames > 0) scene.frames = o->frames;
     Animation anim;
-    if (!simulate_scene(scene, &anim, progress_bar("simulate"), &err)) {
-      std::fprintf(stderr, "dcurve simulate: %s\n", err.c_str());
-      return 1;
-    }
-    if (!write_frame_folder(o->output, anim, "obj", &err)) {
-      std::fprintf(stderr, "dcurve simulate: %s\n", err.c_str());
-      return 1;
-    }
+    if (!simulate_scene(scene, &anim, msg->progress("simulate"), &err)) return msg->error(err);
+    if (!write_frame_folder(o->output, anim, "obj", &err)) return msg->error(err);
+    msg->detail("wrote " + std::to_string(anim.frames.size()) + " frames of " + std::to_string(anim.vertex_count) +
+                " vertices to " + o->output);
     return 0;
   };
 }

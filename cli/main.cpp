@@ -16,8 +16,8 @@ int main(int argc, char** argv) {
     commands.emplace_back(sub, add(*sub));
   };
   reg("simulate", "Simulate a scene with XPBD on a TetGen tet mesh and write its frames", dcurve::cli::add_simulate);
-  reg("encode", "Encode a frame folder or a scene into a .dcrv file within a max error", dcurve::cli::add_encode);
-  reg("decode", "Evaluate a .dcrv file at frames or any time t and write OBJ/PLY meshes", dcurve::cli::add_decode);
+  reg("encode", "Encode frames (a folder, glTF, PC2/MDD or a scene) into a .dcrv file within a max error", dcurve::cli::add_encode);
+  reg("decode", "Evaluate a .dcrv file at frames or any time t: meshes, glTF, PC2/MDD", dcurve::cli::add_decode);
   reg("info", "Describe what is inside a .dcrv file", dcurve::cli::add_info);
   reg("bench", "Compare size, error and speed with Draco and the other baselines", dcurve::cli::add_bench);
   try {

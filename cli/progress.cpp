@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <mutex>
@@ -13,6 +14,7 @@ std::function<void(double)> progress_bar(const std::string& label) {
   struct State {
     std::mutex mu;
     int shown = -1;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   };
   auto state = std::make_shared<State>();
   return [label, state](double fraction) {
@@ -23,8 +25,12 @@ std::function<void(double)> progress_bar(const std::string& label) {
     state->shown = pct;
     const int width = 30;
     int filled = pct * width / 100;
-    std::fprintf(stderr, "\r%-12s [%.*s%*s] %3d%%", label.c_str(), filled, "##############################",
-                 width - filled, "", pct);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - state->start).count();
+    // Time left if the rest goes at the pace so far; unknown until some work is done.
+    char left[32] = "";
+    if (pct > 0 && pct < 100) std::snprintf(left, sizeof left, ", about %.0f s left", elapsed * (100 - pct) / pct);
+    std::fprintf(stderr, "\r%-12s [%.*s%*s] %3d%%%-24s", label.c_str(), filled, "##############################",
+                 width - filled, "", pct, left);
     if (pct == 100) std::fputc('\n', stderr);
     std::fflush(stderr);
   };

@@ -7,7 +7,8 @@
 namespace dcurve::cli {
 
 // Returns a callback taking the fraction done in [0, 1], or an empty function when not on
-// a terminal. The bar finishes its line when the fraction reaches 1.
+// a terminal. The bar shows the time left at the pace so far and finishes its line when
+// the fraction reaches 1.
 std::function<void(double)> progress_bar(const std::string& label);
 
 }  // namespace dcurve::cli

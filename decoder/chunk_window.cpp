@@ -1,4 +1,5 @@
 #include "codec/common/crc32.h"
+#include "codec/common/residual_walk.h"
 #include "codec/decompress/residual_decoder.h"
 #include "decoder_state.h"
 
@@ -44,6 +45,7 @@ bool ChunkWindow::decode_chunk(uint32_t c, Error* error) {
   ChunkModelFrames model_frames(shared_.predictor, span.first, &prediction_scratch_);
   ResidualOptions options;
   options.traversal = &shared_.traversal;
+  options.zero_block_flags = residual_walk::has_zero_block_flags(shared_.index.version);
   if (shared_.predictor.active()) options.model_frames = &model_frames;
   std::string why;
   if (!decode_residual_chunk(V, shared_.traversal, bytes, size_t(e.size), span.count, values_.data(), options,

@@ -18,6 +18,7 @@
 #include "decoder/dcurve.hpp"
 #include "encoder/curves/extract.h"
 #include "encoder/curves/report.h"
+#include "encoder/rate/block_flags.h"
 #include "encoder/rate/chunk_choice.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/low_rank_choice.h"
@@ -310,6 +311,9 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     }
     progress(0.9);
   }
+  // The search measured without block flags; the chosen layer gets them where smaller.
+  if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error)) return false;
+  *out = write_container(m, wo);
 
   if (!measure_decoded(*out, anim, &rep.error, error)) return false;
   if (rep.error.max_error > opt.tolerance)

@@ -2,6 +2,9 @@
 
 #include <filesystem>
 
+#include "codec/common/error.h"
+#include "encoder/io/gltf_reader.h"
+#include "encoder/io/point_cache.h"
 #include "encoder/sim/scene.h"
 
 namespace dcurve {
@@ -26,6 +29,42 @@ bool load_animation_input(const std::string& input, bool allow_builtin, const st
     return false;
   }
   return true;
+}
+
+namespace {
+
+// A point cache's positions with the faces of its rest mesh.
+bool load_point_cache(const std::string& input, const std::string& rest_mesh, Animation* anim, std::string* error) {
+  if (rest_mesh.empty())
+    return fail(error, input + ": a point cache holds positions only: give the faces with --mesh REST.obj");
+  PointCacheInfo info;
+  if (!read_point_cache(input, anim, &info, error)) return false;
+  std::vector<float> rest;
+  if (!read_mesh(rest_mesh, &rest, &anim->faces, error)) return false;
+  if (rest.size() != size_t(anim->vertex_count) * 3)
+    return fail(error, rest_mesh + ": " + std::to_string(rest.size() / 3) + " vertices, but " + input + " has " +
+                           std::to_string(anim->vertex_count));
+  return validate_animation(*anim, error);
+}
+
+}  // namespace
+
+bool load_animation_input(const std::string& input, const InputOptions& options, const std::function<void(double)>& progress,
+                          Animation* anim, std::string* error) {
+  PointCacheKind kind;
+  const bool cache = point_cache_kind(input, &kind);
+  if (!options.rest_mesh.empty() && !cache)
+    return fail(error, input + ": --mesh is for point caches (.pc2, .mdd) only");
+  if (options.gltf_mesh >= 0 && !is_gltf_path(input)) return fail(error, input + ": --gltf-mesh is for glTF files only");
+  bool ok;
+  if (cache)
+    ok = load_point_cache(input, options.rest_mesh, anim, error);
+  else if (is_gltf_path(input))
+    ok = read_gltf_animation(input, options.gltf_mesh, anim, error);
+  else
+    ok = load_animation_input(input, false, progress, anim, error);
+  if (ok && options.fps > 0) anim->frame_rate = options.fps;
+  return ok;
 }
 
 }  // namespace dcurve

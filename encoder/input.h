@@ -13,4 +13,16 @@ namespace dcurve {
 bool load_animation_input(const std::string& input, bool allow_builtin, const std::function<void(double)>& progress,
                           Animation* anim, std::string* error);
 
+// What only some inputs need. `fps` > 0 overrides the frame rate the input has (folders
+// have none: 30 unless given).
+struct InputOptions {
+  std::string rest_mesh;  // the faces of a point cache (.pc2, .mdd), whose vertex count must match
+  int gltf_mesh = -1;     // which mesh of a glTF file (-1: the file must hold one)
+  double fps = 0;
+};
+
+// As above, and also a glTF file (.gltf, .glb) or a point cache with its rest mesh.
+bool load_animation_input(const std::string& input, const InputOptions& options, const std::function<void(double)>& progress,
+                          Animation* anim, std::string* error);
+
 }  // namespace dcurve

@@ -1,14 +1,21 @@
 #!/usr/bin/env bash
-# Installs the Debian packages dcurve builds against. Idempotent: does nothing when all are
-# present. Quiet on success; on failure prints apt's output and exits non-zero.
+# Installs the Debian packages dcurve builds against, then Node and the npm packages of the
+# interoperability tests (tests/interop: glTF-Transform and the Khronos glTF validator).
+# Idempotent: does nothing when all are present. Quiet on success; on failure prints the
+# installer's output and exits non-zero.
 set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libdraco-dev draco libopenmesh-dev libtet1.5-dev libzstd-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
-  libmeshoptimizer-dev libhtscodecs-dev clang libclang-rt-14-dev
+  libmeshoptimizer-dev libhtscodecs-dev clang libclang-rt-14-dev libtinygltf-dev
 )
+# Node from Debian unless a node and npm are already on the PATH (e.g. NodeSource's nodejs,
+# which bundles npm and conflicts with Debian's npm package).
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -16,7 +23,26 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+
+interop=$(cd "$(dirname "$0")/.." && pwd)/tests/interop
+install_npm_packages() {
+  [ -d "$interop/node_modules/@gltf-transform/core" ] && [ -d "$interop/node_modules/gltf-validator" ] && return 0
+  local npm_log
+  npm_log=$(mktemp)
+  echo "install-deps: npm ci in tests/interop" >&2
+  if ! (cd "$interop" && npm ci --no-audit --no-fund) >"$npm_log" 2>&1; then
+    cat "$npm_log" >&2
+    rm -f "$npm_log"
+    echo "install-deps: npm ci failed in $interop" >&2
+    exit 1
+  fi
+  rm -f "$npm_log"
+}
+
+if [ ${#missing[@]} -eq 0 ]; then
+  install_npm_packages
+  exit 0
+fi
 
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then
@@ -31,3 +57,4 @@ if ! { $sudo apt-get update -q && DEBIAN_FRONTEND=noninteractive $sudo apt-get i
   echo "install-deps: apt-get failed for: ${missing[*]}" >&2
   exit 1
 fi
+install_npm_packages

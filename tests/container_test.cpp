@@ -224,8 +224,10 @@ TEST(Container, RoomToGrow) {
   EXPECT_NE(err.find("unknown required section XTRA"), std::string::npos) << err;
 
   RawFile flagged = f;
-  EXPECT_EQ(f.flags, 0u);  // 3.0 defines no feature flag
-  flagged.flags = 0x10000;  // a hint bit
+  EXPECT_EQ(f.flags, kFileFlagZeroBlocks);  // 3.1's one feature flag, always written
+  flagged.flags = 0;  // as 3.0 wrote it
+  EXPECT_TRUE(reads(assemble(flagged), &err)) << err;
+  flagged.flags = kFileFlagZeroBlocks | 0x10000;  // a hint bit
   EXPECT_TRUE(reads(assemble(flagged), &err)) << err;
   flagged.flags = 0x2;  // a required feature no decoder knows
   EXPECT_FALSE(reads(assemble(flagged), &err));

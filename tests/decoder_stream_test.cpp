@@ -94,7 +94,7 @@ std::vector<uint8_t> with_index(const std::vector<uint8_t>& bytes, uint32_t chun
     }
     ByteWriter w;
     w.bytes(raw.data(), 32);  // step and origin
-    w.u8(3);
+    w.u8(raw[32]);  // the payload version as written
     w.u8(1);
     w.varint(chunk_frames);
     w.varint(count);

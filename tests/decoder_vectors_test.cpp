@@ -17,6 +17,7 @@
 #include "codec/compress/residual_encoder.h"
 #include "codec/decompress/model_prediction.h"
 #include "decoder/dcurve.hpp"
+#include "encoder/rate/block_flags.h"
 #include "test_models.h"
 
 namespace dcurve {
@@ -135,6 +136,11 @@ std::vector<Vector> recipes() {
   low_rank_sheet.faces = traversal_order(low_rank_sheet.faces);
   v.push_back({"low_rank", with_low_rank(low_rank_sheet), {}});
   v.push_back({"low_rank_posed", with_low_rank(low_rank_sheet, true), {}});
+  // Every payload as format 3.1 writes it at its smallest: with block flags (version 4).
+  for (Vector& vector : v) {
+    std::string err;
+    EXPECT_TRUE(use_block_flags(&vector.model, BlockFlagUse::Always, &err)) << vector.name << ": " << err;
+  }
   return v;
 }
 
@@ -230,20 +236,36 @@ TEST(TestVectors, ExpectedFilesMatchTheSpecFormulas) {
   }
 }
 
+// The decoder's positions for the file at `path` against the recipe's expected file.
+void expect_decodes_as_expected(const std::string& path, const std::string& name) {
+  std::string err;
+  auto d = Decoder::open_file(path, &err);
+  ASSERT_TRUE(d) << path << ": " << err;
+  std::vector<ExpectedLine> lines = parse_expected(read_text(dir() + name + ".expected.txt"));
+  EXPECT_EQ(lines.size(), sample_times().size()) << name;
+  std::vector<float> xyz(size_t(d->vertex_count()) * 3);
+  for (const ExpectedLine& e : lines) {
+    ASSERT_EQ(e.xyz.size(), xyz.size()) << path;
+    d->evaluate(e.t, xyz.data());
+    for (size_t i = 0; i < xyz.size(); ++i)
+      EXPECT_NEAR(xyz[i], e.xyz[i], 1e-5 * (1 + std::abs(e.xyz[i]))) << path << " t " << e.t << " value " << i;
+  }
+}
+
 TEST(TestVectors, DecoderReproducesTheExpectedPositions) {
+  for (const Vector& v : recipes()) expect_decodes_as_expected(dir() + v.name + ".dcrv", v.name);
+}
+
+// test_vectors/3.0 keeps the files as format 3.0 wrote them (residual payloads without block
+// flags): a 3.1 decoder reads them to the same positions.
+TEST(TestVectors, Format30FilesStillDecode) {
   for (const Vector& v : recipes()) {
-    std::string err;
-    auto d = Decoder::open_file(dir() + v.name + ".dcrv", &err);
-    ASSERT_TRUE(d) << err;
-    std::vector<ExpectedLine> lines = parse_expected(read_text(dir() + v.name + ".expected.txt"));
-    EXPECT_EQ(lines.size(), sample_times().size()) << v.name;
-    std::vector<float> xyz(size_t(d->vertex_count()) * 3);
-    for (const ExpectedLine& e : lines) {
-      ASSERT_EQ(e.xyz.size(), xyz.size()) << v.name;
-      d->evaluate(e.t, xyz.data());
-      for (size_t i = 0; i < xyz.size(); ++i)
-        EXPECT_NEAR(xyz[i], e.xyz[i], 1e-5 * (1 + std::abs(e.xyz[i]))) << v.name << " t " << e.t << " value " << i;
-    }
+    const std::string path = dir() + "3.0/" + v.name + ".dcrv";
+    const std::vector<uint8_t> bytes = read_bytes(path);
+    ASSERT_GE(bytes.size(), 8u) << "missing 3.0 test vector " << path;
+    EXPECT_EQ(bytes[4] | bytes[5] << 8, 3);  // version_major
+    EXPECT_EQ(bytes[6] | bytes[7] << 8, 0);  // version_minor
+    expect_decodes_as_expected(path, v.name);
   }
 }
 

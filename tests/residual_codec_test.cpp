@@ -8,6 +8,7 @@
 
 #include "codec/common/int_coder.h"
 #include "codec/common/residual.h"
+#include "codec/common/residual_walk.h"
 #include "codec/compress/container_writer.h"
 #include "codec/compress/range_encoder.h"
 #include "codec/compress/residual_encoder.h"
@@ -18,6 +19,7 @@
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"
 #include "encoder/metrics.h"
+#include "encoder/rate/block_flags.h"
 #include "encoder/rate/residual_plan.h"
 
 namespace dcurve {
@@ -435,6 +437,61 @@ TEST(ResidualCodec, RandomClusterPlansRoundTripBitExactly) {
         else EXPECT_FALSE(err.empty());
       }
     }
+}
+
+// Payload version 4 flags blocks of zero residuals; version 3 (files 3.0) codes each one.
+// Both decode to the same values, and a still clip costs fewer bytes with the flags.
+TEST(ResidualCodec, ZeroBlockFlagsChangeBytesNotValues) {
+  Animation anim = sheet_animation();
+  std::mt19937 rng(5);
+  for (bool still : {false, true}) {
+    if (still) std::fill(anim.frames.begin(), anim.frames.end(), anim.frames[0]);
+    std::vector<int32_t> q;
+    Model m = grid_model(anim, 1e-3, true, &q);
+    const PredictorPlan plan =
+        still ? default_predictor_plan(kSheetFrames) : random_cluster_plan(anim.vertex_count, kSheetFrames, rng);
+    ResidualOptions with;
+    with.zero_block_flags = true;
+    const std::vector<uint8_t> flagged = encode_residuals(m, q, &plan, with), plain = encode_residuals(m, q, &plan);
+    ASSERT_FALSE(flagged.empty());
+    ASSERT_FALSE(plain.empty());
+    EXPECT_EQ(flagged[0], residual_walk::kFormatVersion);
+    EXPECT_EQ(plain[0], residual_walk::kOldestFormatVersion);
+    for (const std::vector<uint8_t>* payload : {&flagged, &plain}) {
+      m.residual.payload = *payload;
+      std::vector<int32_t> out;
+      std::string err;
+      ASSERT_TRUE(decode_residuals(m, &out, &err)) << err;  // the version byte says how to read
+      EXPECT_EQ(out, q);
+    }
+    if (still) {
+      EXPECT_LT(flagged.size(), plain.size());
+    }
+  }
+}
+
+// The encoder's last step keeps block flags only where they code smaller: never a larger
+// payload, always the same values.
+TEST(ResidualCodec, BlockFlagsAreKeptOnlyWhereSmaller) {
+  Animation anim = sheet_animation();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> noise(-0.2f, 0.2f);
+  for (bool still : {true, false}) {
+    for (std::vector<float>& frame : anim.frames)
+      for (size_t i = 0; i < frame.size(); ++i) frame[i] = still ? anim.frames[0][i] : frame[i] + noise(rng);
+    std::vector<int32_t> q;
+    Model m = grid_model(anim, 1e-3, true, &q);
+    m.residual.payload = encode_residuals(m, q);
+    const std::vector<uint8_t> before = m.residual.payload;
+    std::string err;
+    ASSERT_TRUE(use_block_flags(&m, BlockFlagUse::WhenSmaller, &err)) << err;
+    EXPECT_LE(m.residual.payload.size(), before.size());
+    EXPECT_EQ(m.residual.payload[0], still ? residual_walk::kFormatVersion : residual_walk::kOldestFormatVersion)
+        << (still ? "a still clip is mostly zero blocks" : "noise leaves no zero block to flag");
+    std::vector<int32_t> out;
+    ASSERT_TRUE(decode_residuals(m, &out, &err)) << err;
+    EXPECT_EQ(out, q);
+  }
 }
 
 TEST(ResidualCodec, InvalidCandidatesAndMotionMapsAreRejected) {

@@ -142,6 +142,14 @@ inline std::string file_text(const std::string& path) {
 }
 
 // A scratch folder removed when the object dies.
+// Writes a one-triangle OBJ at height z = `z`, so each frame says which file it came from.
+inline void write_triangle_obj(const std::string& path, double z) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw std::runtime_error(path + ": cannot write");
+  std::fprintf(f, "v 0 0 %.9g\nv 1 0 %.9g\nv 0 1 %.9g\nf 1 2 3\n", z, z, z);
+  std::fclose(f);
+}
+
 struct TempDir {
   std::filesystem::path path;
   TempDir() {

@@ -11,9 +11,12 @@
 namespace dcurve {
 
 // Version written by write_container. Readers accept any minor of their major: a newer minor
-// only adds optional sections and hint flags.
+// adds optional sections, hint flags, or required feature flags an older reader refuses.
 constexpr uint16_t kFormatVersionMajor = 3;
-constexpr uint16_t kFormatVersionMinor = 0;
+constexpr uint16_t kFormatVersionMinor = 1;
+// Required feature (file_flags bit 0, since 3.1): residual payloads may be of version 4 (zero
+// block flags), which a 3.0 reader cannot decode. The writer always sets it.
+constexpr uint32_t kFileFlagZeroBlocks = 1u;
 
 // The fixed 28-byte file header.
 struct ContainerHeader {

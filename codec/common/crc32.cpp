@@ -1,6 +1,7 @@
 #include "codec/common/crc32.h"
 
 #include <array>
+#include <cstring>
 
 namespace dcurve {
 namespace {
@@ -22,12 +23,9 @@ Tables make_tables() {
     for (uint32_t i = 0; i < 256; ++i) t[k][i] = (t[k - 1][i] >> 8) ^ t[0][t[k - 1][i] & 0xff];
   return t;
 }
-}  // namespace
 
-uint32_t crc32c(const void* data, size_t size, uint32_t seed) {
+uint32_t crc32c_tables(const uint8_t* p, size_t size, uint32_t c) {
   static const Tables t = make_tables();
-  const uint8_t* p = static_cast<const uint8_t*>(data);
-  uint32_t c = ~seed;
   for (; size >= 8; size -= 8, p += 8) {
     // Bytes assembled explicitly: the same on any endianness and alignment.
     const uint32_t lo = c ^ (uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24);
@@ -35,6 +33,35 @@ uint32_t crc32c(const void* data, size_t size, uint32_t seed) {
         t[2][p[5]] ^ t[1][p[6]] ^ t[0][p[7]];
   }
   for (; size > 0; --size, ++p) c = t[0][(c ^ *p) & 0xff] ^ (c >> 8);
-  return ~c;
+  return c;
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+// SSE 4.2 has the CRC-32C step as an instruction: several times the tables' speed on the
+// decoder's checksum of every decoded value.
+__attribute__((target("sse4.2"))) uint32_t crc32c_instruction(const uint8_t* p, size_t size, uint32_t c) {
+  uint64_t c64 = c;
+  for (; size >= 8; size -= 8, p += 8) {
+    uint64_t word;  // x86 is little-endian: the bytes in order
+    std::memcpy(&word, p, 8);
+    c64 = __builtin_ia32_crc32di(c64, word);
+  }
+  c = uint32_t(c64);
+  for (; size > 0; --size, ++p) c = __builtin_ia32_crc32qi(c, *p);
+  return c;
+}
+bool has_crc32c_instruction() {
+  static const bool has = __builtin_cpu_supports("sse4.2");
+  return has;
+}
+#else
+uint32_t crc32c_instruction(const uint8_t* p, size_t size, uint32_t c) { return crc32c_tables(p, size, c); }
+bool has_crc32c_instruction() { return false; }
+#endif
+}  // namespace
+
+uint32_t crc32c(const void* data, size_t size, uint32_t seed) {
+  const uint8_t* p = static_cast<const uint8_t*>(data);
+  return ~(has_crc32c_instruction() ? crc32c_instruction(p, size, ~seed) : crc32c_tables(p, size, ~seed));
 }
 }  // namespace dcurve

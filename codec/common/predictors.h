@@ -116,6 +116,12 @@ struct ResidualOptions {
   // Where walks get their spatial weight tables (null: each walk computes its own). Changes
   // no value, only how often the same table is computed.
   SpatialWeightsSource* weights_source = nullptr;
+  // Whether the stream flags blocks whose residuals are all zero (payload version 4) or not
+  // (version 3, as in files 3.0). Readers take it from the payload's version. Writers code
+  // version 3 by default: the encoder's search measures its trials so (its choices were
+  // tuned on that coder), and its last step recodes the chosen payloads with the flags
+  // where that is smaller (encoder/rate/block_flags.h).
+  bool zero_block_flags = false;
 };
 
 // options.traversal when set, else build_traversal(model) stored in *owned, with its
@@ -252,7 +258,9 @@ inline void vertex_prediction(const PredictorChoice* choice, const Traversal& t,
   const uint32_t v = t.order[pos];
   for (int a = 0; a < 3; ++a) {
     auto ba = [&](uint32_t u) { return base(u, a); };
-    pred[a] = ba(v) + spatial_correction(choice[a].spatial, t, pos, a, qf, ba, weights ? weights[a] : nullptr);
+    // Off tested here, not only inside: most axes have no correction, and the call is not inlined.
+    const SpatialMode mode = choice[a].spatial;
+    pred[a] = ba(v) + (mode == SpatialMode::Off ? 0 : spatial_correction(mode, t, pos, a, qf, ba, weights ? weights[a] : nullptr));
   }
 }
 

@@ -120,6 +120,7 @@ struct ChunkEntry {
   uint32_t crc = 0;  // CRC-32C of the chunk's bytes
 };
 struct ResidualIndex {
+  uint8_t version = 0;  // of the payload: residual_walk::kOldestFormatVersion..kFormatVersion
   bool from_faces = false;
   uint32_t chunk_frames = 0;
   std::vector<ChunkEntry> chunks;
@@ -133,9 +134,11 @@ struct ResidualWorkspace {
   std::vector<int8_t> residuals;
   std::vector<int64_t> base;
   std::vector<int32_t> model_frame;
+  std::vector<uint8_t> block_flags, previous_block_flags;  // zero-block flags of two frames
   PredictorPlan plan;
   size_t bytes() const {
-    return residuals.capacity() + base.capacity() * sizeof(int64_t) + model_frame.capacity() * sizeof(int32_t);
+    return residuals.capacity() + base.capacity() * sizeof(int64_t) + model_frame.capacity() * sizeof(int32_t) +
+           block_flags.capacity() + previous_block_flags.capacity();
   }
 };
 

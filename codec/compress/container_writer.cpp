@@ -165,7 +165,7 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   out.bytes(kMagic, 4);
   out.u16(kFormatVersionMajor);
   out.u16(kFormatVersionMinor);
-  out.u32(0);
+  out.u32(kFileFlagZeroBlocks);
   out.u32(uint32_t(sections.size()));
   out.u64(kHeaderBytes + body.size());
   out.u32(crc32c(out.data().data(), kHeaderBytes - 4));

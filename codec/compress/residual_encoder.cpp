@@ -21,6 +21,10 @@ struct StreamWriter {
     ints.encode(enc, ctx, sign_ctx, *r);
     return true;
   }
+  bool zero_block(int ctx, bool* zero) {
+    enc.encode(side.zero_block[size_t(ctx)], *zero ? 1 : 0);
+    return true;
+  }
   bool index(uint32_t K, uint32_t prev, uint32_t* j) {
     enc.encode(side.same, *j == prev);
     if (*j == prev) return true;
@@ -109,7 +113,7 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
     data.bytes(bytes.data(), bytes.size());
   }
   ByteWriter w;
-  w.u8(kFormatVersion);
+  w.u8(options.zero_block_flags ? kFormatVersion : kOldestFormatVersion);
   w.u8(trav.from_faces ? 1 : 0);
   w.varint(K);
   w.varint(entries.size());

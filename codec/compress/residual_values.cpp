@@ -15,6 +15,7 @@ struct ResidualRecorder {
     out->push_back(*r);
     return true;
   }
+  bool zero_block(int, bool*) { return true; }
   bool index(uint32_t, uint32_t, uint32_t*) { return true; }
   bool row(int, const MotionRow&, MotionRow*) { return true; }
 };

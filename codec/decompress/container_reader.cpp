@@ -22,10 +22,10 @@ namespace {
 using namespace container_format;  // what both sides of the format share
 
 constexpr uint16_t kSectionKnownFlags = kSectionRequired | kSectionZstd;
-// File flags: the low 16 bits name features a reader must understand (none in 3.0), the
-// high 16 bits are hints a reader may ignore.
+// File flags: the low 16 bits name features a reader must understand, the high 16 bits are
+// hints a reader may ignore.
 constexpr uint32_t kFileRequiredFlagsMask = 0xffffu;
-constexpr uint32_t kFileKnownRequiredFlags = 0;
+constexpr uint32_t kFileKnownRequiredFlags = kFileFlagZeroBlocks;
 // Smallest compact section header: tag, flags, a one-byte size, CRC.
 constexpr size_t kCompactSectionHeaderMin = 4 + 1 + 1 + 4;
 // A decompressed section may be at most this many times its stored size (plus a floor):

@@ -18,12 +18,7 @@ bool decode_low_rank_basis(const Model& model, uint64_t max_values, const Traver
   const size_t n = size_t(model.meta.vertex_count) * 3;
   if ((uint64_t(lr.components) + 1) * n > max_values)
     return fail(error, "low-rank model is implausibly large for the file size");
-  Model pseudo;
-  pseudo.meta = model.meta;
-  pseudo.meta.frame_count = lr.components + 1;
-  pseudo.faces = model.faces;
-  pseudo.curves = model.curves;
-  pseudo.residual.payload = lr.basis_payload;
+  const Model pseudo = low_rank_basis_model(model);
   std::string why;
   ResidualOptions options;
   options.traversal = traversal;  // the file's: same vertices, faces and curves
@@ -35,6 +30,16 @@ bool decode_low_rank_basis(const Model& model, uint64_t max_values, const Traver
 }
 
 }  // namespace
+
+Model low_rank_basis_model(const Model& model) {
+  Model pseudo;
+  pseudo.meta = model.meta;
+  pseudo.meta.frame_count = model.low_rank.components + 1;
+  pseudo.faces = model.faces;
+  pseudo.curves = model.curves;
+  pseudo.residual.payload = model.low_rank.basis_payload;
+  return pseudo;
+}
 
 bool has_motion_model(const Model& model) {
   for (const Segment& s : model.segments)

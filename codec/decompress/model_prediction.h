@@ -17,6 +17,10 @@ namespace dcurve {
 // True when some segment of `model` carries a non-Zero motion.
 bool has_motion_model(const Model& model);
 
+// The low-rank mean and basis as the model of the K + 1 pseudo-frames whose residual payload
+// is model.low_rank.basis_payload (same vertices, faces and curves).
+Model low_rank_basis_model(const Model& model);
+
 // True when the residual layer of `model` may use the Model predictor: the file has a
 // low-rank model or a PDE motion model (validate_model forbids both at once).
 bool has_model_prediction(const Model& model);

@@ -23,6 +23,10 @@ struct StreamReader {
     *r = ints.decode(dec, ctx, sign_ctx);
     return !dec.overrun();
   }
+  bool zero_block(int ctx, bool* zero) {
+    *zero = dec.decode(side.zero_block[size_t(ctx)]) != 0;
+    return !dec.overrun();
+  }
   bool index(uint32_t K, uint32_t prev, uint32_t* j) {
     if (dec.decode(side.same)) {
       *j = prev;
@@ -127,13 +131,14 @@ bool read_residual_index(const uint8_t* payload, size_t size, uint32_t F, bool h
   const uint8_t from_faces = r.u8();
   const uint64_t chunk_frames = r.varint(), count = r.varint();
   if (!r.ok) return fail(error, "residual payload is truncated");
-  if (version != kFormatVersion) return fail(error, "residual payload version " + std::to_string(version) + " is not supported");
+  if (version < kOldestFormatVersion || version > kFormatVersion) return fail(error, "residual payload version " + std::to_string(version) + " is not supported");
   if (from_faces > 1 || from_faces != (has_faces ? 1 : 0))
     return fail(error, "residual payload was coded with a different neighbour structure (faces present or not)");
   if (chunk_frames == 0 || chunk_frames > F) return fail(error, "residual chunk length is out of range");
   if (count != chunk_count(F, uint32_t(chunk_frames)))
     return fail(error, "residual chunk index disagrees with the frame count");
   if (count * 6 > r.remaining()) return fail(error, "residual chunk index is truncated");
+  index->version = version;
   index->from_faces = from_faces != 0;
   index->chunk_frames = uint32_t(chunk_frames);
   index->chunks.assign(size_t(count), ChunkEntry());
@@ -187,7 +192,8 @@ bool decode_all(const Model& model, std::vector<int32_t>* q, ResidualPlan* plan,
       return fail(error, "residual chunk " + std::to_string(c) + " is corrupted (checksum mismatch)");
     const ChunkSpan span = chunk_span(F, index.chunk_frames, c);
     std::vector<int32_t> prediction;
-    const ResidualOptions chunk_options = options_for_chunk(options, span, stride, &prediction);
+    ResidualOptions chunk_options = options_for_chunk(options, span, stride, &prediction);
+    chunk_options.zero_block_flags = has_zero_block_flags(index.version);
     std::string why;
     if (!decode_residual_chunk(V, trav, bytes, size_t(e.size), span.count, q->data() + stride * span.first,
                                chunk_options, &ws, &why))

@@ -7,6 +7,7 @@
 
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
+#include "encoder/io/frame_order.h"
 #include "encoder/io/mesh_writer.h"
 #include "encoder/io/polygon_reader.h"
 #include "encoder/io/text_mesh_check.h"
@@ -99,14 +100,15 @@ bool validate_animation(const Animation& anim, std::string* error) {
 bool list_frame_files(const std::string& dir, std::vector<std::string>* files, std::string* error) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return fail(error, dir + ": not a folder");
-  files->clear();
+  std::vector<fs::path> paths;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     std::string ext = lowercase_extension(e.path().string());
-    if (e.is_regular_file() && (ext == ".obj" || ext == ".ply" || ext == ".off")) files->push_back(e.path().string());
+    if (e.is_regular_file() && (ext == ".obj" || ext == ".ply" || ext == ".off")) paths.push_back(e.path());
   }
   if (ec) return fail(error, dir + ": " + ec.message());
-  if (files->empty()) return fail(error, dir + ": no .obj, .ply or .off frames found");
-  std::sort(files->begin(), files->end());
+  if (paths.empty()) return fail(error, dir + ": no .obj, .ply or .off frames found");
+  if (!order_frame_files(&paths, error)) return false;
+  files->assign(paths.begin(), paths.end());
   return true;
 }
 

@@ -27,11 +27,11 @@ bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uin
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
                 const std::vector<uint32_t>& faces, std::string* error);
 
-// The .obj/.ply/.off files of `dir` in name order (paths with `dir` in front); false when
-// there are none.
+// The .obj/.ply/.off files of `dir` in frame-number order (encoder/io/frame_order.h), paths
+// with `dir` in front; false when there are none or the order is ambiguous.
 bool list_frame_files(const std::string& dir, std::vector<std::string>* files, std::string* error);
 
-// Reads every .obj/.ply/.off file of `dir` in name order. All frames must have the same
+// Reads every .obj/.ply/.off file of `dir` in frame-number order. All frames must have the same
 // vertex count and face list, and finite coordinates.
 bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error);
 

@@ -1,0 +1,24 @@
+// Reading glTF accessors into flat arrays with every offset, stride and count checked
+// against the buffers (tinygltf parses the JSON but leaves the bytes to the caller), and
+// sparse accessors applied.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tinygltf {
+class Model;
+}
+
+namespace dcurve {
+
+// The float values of accessor `index` (count x components, FLOAT components, `components`
+// per element: 1 SCALAR, 3 VEC3). Errors say which accessor and why; `what` names its role
+// ("POSITION", "morph target 2", ...).
+bool read_float_accessor(const tinygltf::Model& model, int index, int components, const std::string& what,
+                         std::vector<float>* out, std::string* error);
+
+// The values of an index accessor (SCALAR, UNSIGNED_BYTE/SHORT/INT).
+bool read_index_accessor(const tinygltf::Model& model, int index, std::vector<uint32_t>* out, std::string* error);
+
+}  // namespace dcurve

@@ -1,0 +1,21 @@
+// glTF 2.0 in (.gltf or .glb, read by tinygltf): one mesh primitive with morph targets and an
+// animation of its weights becomes an animation whose frames are the weights' keyframes
+// (base + sum of weight x target), at the frame rate of the key times.
+#pragma once
+#include <string>
+
+#include "encoder/io/frames.h"
+
+namespace dcurve {
+
+// Whether `path` names a glTF file (.gltf or .glb, any case).
+bool is_gltf_path(const std::string& path);
+
+// Reads mesh `mesh_index` of the file (-1: the file must hold exactly one mesh). Refused
+// with a message naming the file: no weights animation, several meshes, several primitives
+// or animations, non-triangle primitives, unevenly spaced keys, data it cannot read (sparse
+// accessors it cannot apply, quantized attributes) and the compression extensions
+// KHR_draco_mesh_compression and EXT_meshopt_compression, which it does not decode.
+bool read_gltf_animation(const std::string& path, int mesh_index, Animation* anim, std::string* error);
+
+}  // namespace dcurve

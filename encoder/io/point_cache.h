@@ -1,0 +1,45 @@
+// Point caches in and out: PC2 (Blender, 3ds Max, Houdini; little-endian, a start frame and
+// a sample step) and MDD (LightWave, Blender, Houdini; big-endian, one time per frame).
+// Both hold positions only, so reading takes the faces from a separate rest mesh.
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "encoder/io/frames.h"
+
+namespace dcurve {
+
+enum class PointCacheKind { Pc2, Mdd };
+
+// What a cache's header says besides the positions.
+struct PointCacheInfo {
+  uint32_t vertex_count = 0, frame_count = 0;
+  double start = 0;        // PC2: start frame; MDD: time of the first frame, seconds
+  double frame_rate = 0;   // MDD: from the frame times (0 when it has fewer than two); PC2: 0
+};
+
+// ".pc2" -> Pc2, ".mdd" -> Mdd (any case); false for other extensions.
+bool point_cache_kind(const std::string& path, PointCacheKind* kind);
+
+// Reads every frame of a PC2 or MDD file into anim->frames (faces left empty). A header
+// that does not match the file's size, or a non-finite value, is an error naming the file.
+bool read_point_cache(const std::string& path, Animation* anim, PointCacheInfo* info, std::string* error);
+
+// Writes a cache one frame at a time to an open stream (the caller owns the file and where it
+// lands). The header needs the frame count up front.
+class PointCacheWriter {
+ public:
+  PointCacheWriter(PointCacheKind kind, std::FILE* out, uint32_t vertex_count) : kind_(kind), out_(out), vertex_count_(vertex_count) {}
+  bool write_header(uint32_t frame_count, double frame_rate);
+  bool write_frame(const float* xyz);
+
+ private:
+  PointCacheKind kind_;
+  std::FILE* out_;
+  uint32_t vertex_count_;
+  std::vector<uint8_t> buffer_;
+};
+
+}  // namespace dcurve

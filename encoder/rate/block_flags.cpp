@@ -1,0 +1,47 @@
+#include "encoder/rate/block_flags.h"
+
+#include <vector>
+
+#include "codec/common/error.h"
+#include "codec/common/residual.h"
+#include "codec/compress/residual_encoder.h"
+#include "codec/decompress/model_prediction.h"
+#include "codec/decompress/residual_decoder.h"
+
+namespace dcurve {
+namespace {
+
+// *payload (of `model`'s frames) recoded with block flags, kept as `when` says.
+bool recode(const Model& model, const ResidualOptions& options, BlockFlagUse when, std::vector<uint8_t>* payload,
+            std::string* error) {
+  std::vector<int32_t> q;
+  ResidualPlan plan;
+  if (!decode_residuals(model, &q, error, options, &plan)) return false;
+  ResidualOptions flagged = options;
+  flagged.zero_block_flags = true;
+  std::vector<uint8_t> recoded = encode_residuals(model, q, plan, flagged);
+  if (recoded.empty()) return fail(error, "internal error: a decoded residual plan does not code again");
+  if (when == BlockFlagUse::Always || recoded.size() < payload->size()) payload->swap(recoded);
+  return true;
+}
+
+}  // namespace
+
+bool use_block_flags(Model* model, BlockFlagUse when, std::string* error) {
+  // The basis first: the RESI's Model prediction comes from its decoded values, which the
+  // recoding leaves as they are.
+  if (model->low_rank.components > 0) {
+    const Model basis = low_rank_basis_model(*model);
+    if (!recode(basis, {}, when, &model->low_rank.basis_payload, error)) return false;
+  }
+  if (model->residual.payload.empty()) return true;
+  std::vector<int32_t> prediction;
+  ResidualOptions options;
+  if (has_model_prediction(*model)) {
+    if (!model_grid_prediction(*model, UINT64_MAX, &prediction, error)) return false;
+    options.model_prediction = &prediction;
+  }
+  return recode(*model, options, when, &model->residual.payload, error);
+}
+
+}  // namespace dcurve
