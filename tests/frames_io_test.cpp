@@ -101,6 +101,8 @@ TEST(FramesIo, RecordsTheReadersWouldSkipAreRefused) {
       // element; a bare "v" line is a vertex OpenMesh does not read.
       {"header.ply", "ply\nformat ascii 1.0\nproperty float x\nelement vertex 1\nend_header\n0\n", "line 3: malformed PLY header"},
       {"noz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n", "no z"},
+      {"twice.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nelement vertex 2\nproperty float x\n"
+                    "end_header\n0\n0\n0\n", "line 5: malformed PLY header"},  // found by the reader fuzz target
       {"bare.obj", square4 + "v\nf 1 2 3\n", "line 5"},
       {"feed.obj", square4 + "v\f\f\nf 1 2 3\n", "line 5"},
       // OpenMesh's OFF reader reads counts across lines and allocates a face's vertex count.

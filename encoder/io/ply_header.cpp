@@ -46,6 +46,8 @@ bool ply_header_line(std::istringstream& s, const std::string& word, PlyHeader* 
   if (word != "element") return word == "property" && ply_property(s, h);
   if (!(s >> a >> b) || b.empty() || b.size() > 10 || b.find_first_not_of("0123456789") != std::string::npos)
     return false;
+  for (const PlyElement& e : h->elements)
+    if (e.name == a) return false;  // a second "vertex" element: which one is the mesh's?
   h->elements.push_back({a, std::stoll(b), 0});
   return h->elements.back().count <= 0x7fffffff;
 }
