@@ -4,7 +4,7 @@
 #include <exception>
 
 #include "cli/commands.h"
-#include "encoder/io/files.h"
+#include "encoder/io/signal_cleanup.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"dcurve: compress animated triangle meshes into dynamic PDE curves (.dcrv)"};

@@ -1,6 +1,7 @@
 // A fresh private folder beside an output (mkdtemp: created, never reused, not a symlink),
 // where a multi-file output is written before it is moved into place. Whatever is still in
-// it when it goes out of scope is removed, so a failed decode leaves nothing behind.
+// it when it goes out of scope is removed, so a failed decode leaves nothing behind; a
+// SIGINT, SIGTERM or SIGHUP removes it too (encoder/io/signal_cleanup). One at a time.
 #pragma once
 #include <string>
 

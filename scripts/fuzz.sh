@@ -2,8 +2,8 @@
 # Fuzz with libFuzzer (clang, ASan + UBSan) for a bounded time.
 #   scripts/fuzz.sh [SECONDS=60] [BUILD_DIR=build-fuzz] [TARGET=decoder|reader]
 # decoder: the runtime decoder, seeded with the test vectors in format_spec/test_vectors.
-# reader: the encoder's mesh readers (OBJ/OFF/PLY, text and binary), seeded with
-# tests/fuzz/reader_seeds. Findings (crash-*, leak-*, timeout-*) are written to
+# reader: the encoder's input readers (OBJ/OFF/PLY text and binary, glTF, PC2, MDD), seeded
+# with tests/fuzz/reader_seeds. Findings (crash-*, leak-*, timeout-*) are written to
 # BUILD_DIR/fuzz-findings; exit status is non-zero when there is one.
 set -euo pipefail
 seconds="${1:-60}"

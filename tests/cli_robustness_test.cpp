@@ -5,15 +5,19 @@
 // that decode and prints what they store safely. DCURVE_TEST_CLI runs them against another
 // build (cli_util.h).
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "codec/compress/container_writer.h"
 #include "codec/decompress/container_reader.h"
@@ -263,6 +267,44 @@ TEST(CliRobustness, InfoPrintsUnitsThatAreNotUtf8OrHoldEscapes) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\\x1b[2Jm"), std::string::npos) << r.output;
+}
+
+// A folder decode killed part-way leaves neither the output folder nor its staging folder.
+TEST(CliRobustness, TermSignalDuringAFolderDecodeLeavesNothing) {
+  TempDir dir;
+  ASSERT_EQ(encode_sheet(dir, small_sheet()).exit_code, 0);
+  const std::string cli = cli_program();
+  const std::string input = dir / "c.dcrv", output = dir / "out";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    execl(cli.c_str(), cli.c_str(), "decode", input.c_str(), "-o", output.c_str(), "--frames", "1000000", "--quiet",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  auto staged_frames = [&] {  // frames written into a .dcurve-partial-* folder so far
+    size_t n = 0;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir.path, ec))
+      if (e.path().filename().string().rfind(".dcurve-partial-", 0) == 0)
+        for (auto it = fs::directory_iterator(e.path(), ec); !ec && it != fs::directory_iterator(); ++it) ++n;
+    return n;
+  };
+  const auto start = std::chrono::steady_clock::now();
+  while (staged_frames() < 10 && std::chrono::steady_clock::now() - start < std::chrono::seconds(30))
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  const size_t seen = staged_frames();
+  kill(child, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_GE(seen, 10u);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "exit " << WEXITSTATUS(status);
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  EXPECT_EQ(staged_frames(), 0u);
+  size_t left = 0;
+  for (auto it = fs::directory_iterator(dir.path); it != fs::directory_iterator(); ++it)
+    left += it->path().filename().string().rfind(".dcurve-partial-", 0) == 0 || it->path() == fs::path(output);
+  EXPECT_EQ(left, 0u);
 }
 
 }  // namespace

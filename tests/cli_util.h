@@ -14,12 +14,17 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-// Runs `args` with the dcurve CLI through the shell: the one built beside the tests, or the
-// program DCURVE_TEST_CLI names (to run the tests against another build, e.g. main's).
+// The dcurve CLI under test: the one built beside the tests, or the program DCURVE_TEST_CLI
+// names (to run the tests against another build, e.g. main's).
+inline std::string cli_program() {
+  const char* other = std::getenv("DCURVE_TEST_CLI");
+  return other && *other ? other : DCURVE_CLI;
+}
+
+// Runs `args` with the dcurve CLI through the shell.
 inline CommandResult run_cli(const std::string& args) {
   CommandResult r;
-  const char* other = std::getenv("DCURVE_TEST_CLI");
-  std::string cmd = std::string(other && *other ? other : DCURVE_CLI) + " " + args + " 2>&1";
+  std::string cmd = cli_program() + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf;

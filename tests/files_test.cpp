@@ -1,6 +1,6 @@
 // The crash-safe writer (encoder/io/files): temporaries are created exclusively beside the
 // output and never through a link, outputs that are links or special files are refused,
-// and a SIGTERM during a write removes the temporary.
+// and a SIGTERM during a write removes the temporary and the registered staging folder.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "encoder/io/files.h"
+#include "encoder/io/signal_cleanup.h"
 #include "test_util.h"
 
 namespace dcurve::test {
@@ -62,6 +63,24 @@ TEST(Files, SameFileIsFoundThroughLinks) {
   EXPECT_FALSE(is_one_of(dir / "x.obj", {dir / "a.obj"}));
 }
 
+// Waits until `ready` holds (20 s at most), sends SIGTERM to the child, and expects it to
+// have held and the child to die of the signal.
+template <class Ready>
+void expect_terminated_when(pid_t child, Ready ready) {
+  bool seen = false;
+  const auto start = std::chrono::steady_clock::now();
+  while (!seen && std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
+    seen = ready();
+    if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  kill(child, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(seen);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+}
+
 // A child writes a large file; the parent sends SIGTERM as soon as the temporary appears.
 // The child dies of the signal and the folder is left empty.
 TEST(Files, TermSignalDuringAWriteRemovesTheTemporary) {
@@ -74,18 +93,30 @@ TEST(Files, TermSignalDuringAWriteRemovesTheTemporary) {
     std::vector<char> data(size_t(1) << 28, 'x');  // long enough to write that the signal lands first
     for (;;) write_file_atomic(out, data.data(), data.size(), nullptr);
   }
-  bool seen = false;
-  const auto start = std::chrono::steady_clock::now();
-  while (!seen && std::chrono::steady_clock::now() - start < std::chrono::seconds(20)) {
-    seen = entries(dir) > 0;
-    if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  expect_terminated_when(child, [&] { return entries(dir) > 0; });
+  EXPECT_EQ(entries(dir), 0u);
+}
+
+// A child fills a registered staging folder with files, one written at a time; the parent
+// sends SIGTERM once a few are there. The folder goes with its files, finished or not.
+TEST(Files, TermSignalRemovesTheStagingFolderAndItsFiles) {
+  TempDir dir;
+  const std::string staging = dir / "staging";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    remove_temporary_on_signal();
+    fs::create_directory(staging);
+    set_temporary_folder(staging);
+    std::vector<char> data(size_t(1) << 20, 'x');
+    for (int i = 0;; ++i) write_file_atomic(staging + "/f" + std::to_string(i), data.data(), data.size(), nullptr);
   }
-  kill(child, SIGTERM);
-  int status = 0;
-  ASSERT_EQ(waitpid(child, &status, 0), child);
-  EXPECT_TRUE(seen);
-  ASSERT_TRUE(WIFSIGNALED(status));
-  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  expect_terminated_when(child, [&] {
+    std::error_code ec;
+    size_t n = 0;
+    for (auto it = fs::directory_iterator(staging, ec); !ec && it != fs::directory_iterator(); ++it) ++n;
+    return n >= 3;
+  });
   EXPECT_EQ(entries(dir), 0u);
 }
 

@@ -86,5 +86,30 @@ TEST(PointCache, NonFiniteValueIsRefused) {
   EXPECT_NE(err.find("frame 1, vertex 1"), std::string::npos) << err;
 }
 
+// 1,380,655,685 x 3,340,214,413 = 2^62 + 1, so frames x vertices x 12 bytes wraps around 64
+// bits to exactly one vertex's 12 bytes: a size check done by multiplying would accept the
+// file and then size a billion frames.
+TEST(PointCache, HeaderWhoseSizeWrapsAroundIsRefused) {
+  TempDir dir;
+  Animation one_vertex;
+  one_vertex.vertex_count = 1;
+  one_vertex.frames = {{1, 2, 3}};
+  ASSERT_TRUE(write_cache(dir / "w.pc2", one_vertex, 30.0));
+  std::vector<uint8_t> bytes;
+  std::string err;
+  ASSERT_TRUE(read_file(dir / "w.pc2", &bytes, &err));
+  auto put_u32 = [&](size_t at, uint32_t v) {
+    for (int i = 0; i < 4; ++i) bytes[at + i] = uint8_t(v >> (8 * i));
+  };
+  put_u32(16, 3340214413u);  // vertices
+  put_u32(28, 1380655685u);  // frames
+  ASSERT_TRUE(write_file_atomic(dir / "w.pc2", bytes.data(), bytes.size(), &err));
+  Animation back;
+  PointCacheInfo info;
+  EXPECT_FALSE(read_point_cache(dir / "w.pc2", &back, &info, &err));
+  EXPECT_NE(err.find("truncated file?"), std::string::npos) << err;
+  EXPECT_TRUE(back.frames.empty());
+}
+
 }  // namespace
 }  // namespace dcurve::test

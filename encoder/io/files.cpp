@@ -1,7 +1,6 @@
 #include "encoder/io/files.h"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -16,36 +15,10 @@
 #include <random>
 
 #include "codec/common/error.h"
+#include "encoder/io/signal_cleanup.h"
 
 namespace dcurve {
 namespace {
-
-// The temporary being written, for the signal handler: a fixed buffer and a flag, the only
-// state a handler may read safely.
-char g_temporary[4096];
-volatile sig_atomic_t g_temporary_active = 0;
-const int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
-
-void on_signal(int sig) {
-  if (g_temporary_active) unlink(g_temporary);
-  signal(sig, SIG_DFL);
-  raise(sig);
-}
-
-// Blocks the cleanup signals while the temporary's name and state change together.
-class SignalBlock {
- public:
-  SignalBlock() {
-    sigset_t set;
-    sigemptyset(&set);
-    for (int s : kCleanupSignals) sigaddset(&set, s);
-    pthread_sigmask(SIG_BLOCK, &set, &old_);
-  }
-  ~SignalBlock() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
-
- private:
-  sigset_t old_;
-};
 
 std::string random_suffix() {
   static std::mt19937_64 rng{std::random_device{}() ^ (uint64_t(getpid()) << 32)};
@@ -60,17 +33,14 @@ std::string random_suffix() {
 int create_temporary(const std::string& path, std::string* tmp) {
   for (int attempt = 0; attempt < 64; ++attempt) {
     *tmp = path + ".tmp." + random_suffix();
-    if (tmp->size() >= sizeof g_temporary) {
+    SignalBlock block;
+    if (!set_temporary_file(*tmp)) {
       errno = ENAMETOOLONG;
       return -1;
     }
-    SignalBlock block;
     const int fd = open(tmp->c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (fd >= 0) {
-      std::memcpy(g_temporary, tmp->c_str(), tmp->size() + 1);
-      g_temporary_active = 1;
-      return fd;
-    }
+    if (fd >= 0) return fd;
+    clear_temporary_file();
     if (errno != EEXIST) return -1;
   }
   return -1;
@@ -91,7 +61,7 @@ bool write_all(int fd, const void* data, size_t size) {
 void discard_temporary(const std::string& tmp) {
   SignalBlock block;
   unlink(tmp.c_str());
-  g_temporary_active = 0;
+  clear_temporary_file();
 }
 
 }  // namespace
@@ -149,24 +119,12 @@ bool write_file_atomic(const std::string& path, const void* data, size_t size, s
   int saved = errno;
   if (close(fd) != 0 && ok) ok = false, saved = errno;
   if (ok && rename(tmp.c_str(), path.c_str()) == 0) {
-    g_temporary_active = 0;
+    clear_temporary_file();
     return true;
   }
   if (ok) saved = errno;
   discard_temporary(tmp);
   return fail(error, path + ": write failed: " + std::strerror(saved));
-}
-
-void remove_temporary_on_signal() {
-  for (int s : kCleanupSignals) {
-    struct sigaction old;
-    if (sigaction(s, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
-    struct sigaction sa;
-    std::memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(s, &sa, nullptr);
-  }
 }
 
 }  // namespace dcurve

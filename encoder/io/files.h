@@ -25,9 +25,4 @@ bool is_one_of(const std::string& path, const std::vector<std::string>& inputs);
 // check_output_path.
 bool write_file_atomic(const std::string& path, const void* data, size_t size, std::string* error);
 
-// Makes SIGINT, SIGTERM and SIGHUP remove the temporary file write_file_atomic is writing
-// before the process dies of the signal (a signal the process ignores stays ignored).
-// SIGKILL cannot be caught: a temporary may then remain.
-void remove_temporary_on_signal();
-
 }  // namespace dcurve

@@ -1,6 +1,7 @@
 #include "encoder/io/point_cache.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "codec/common/error.h"
@@ -53,11 +54,18 @@ bool check_size(const std::string& path, size_t header, uint64_t frames, uint64_
                 std::string* error) {
   if (vertices == 0) return fail(error, path + ": the header says 0 vertices");
   if (frames == 0) return fail(error, path + ": the header says 0 frames");
-  const uint64_t expected = header + frames * vertices * 12;
-  if (expected != file_bytes)
+  // Compared by division: frames x vertices x 12 can wrap around 64 bits.
+  const uint64_t frame_bytes = vertices * 12;
+  const bool fits = file_bytes >= header && (file_bytes - header) % frame_bytes == 0 &&
+                    (file_bytes - header) / frame_bytes == frames;
+  if (!fits) {
+    const long double expected = header + (long double)frames * frame_bytes;
+    char needed[64];
+    std::snprintf(needed, sizeof needed, "%.0Lf", expected);
     return fail(error, path + ": " + std::to_string(file_bytes) + " bytes, but a header of " + std::to_string(frames) +
-                           " frames x " + std::to_string(vertices) + " vertices needs " + std::to_string(expected) +
+                           " frames x " + std::to_string(vertices) + " vertices needs " + needed +
                            (expected > file_bytes ? " (truncated file?)" : " (trailing bytes)"));
+  }
   return true;
 }
 
