@@ -9,9 +9,9 @@
 #include "cli/progress.h"
 #include "bench/paper_protocols.h"
 #include "encoder/curves/extract.h"
-#include "encoder/input.h"
+#include "corpus/input.h"
 #include "encoder/io/files.h"
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 
 namespace dcurve::cli {
 namespace {

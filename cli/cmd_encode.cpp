@@ -10,9 +10,9 @@
 #include "cli/number_range.h"
 #include "encoder/curves/report_json.h"
 #include "encoder/encoder.h"
-#include "encoder/input.h"
+#include "corpus/input.h"
 #include "encoder/io/files.h"
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 
 namespace dcurve::cli {
 namespace {

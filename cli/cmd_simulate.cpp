@@ -3,7 +3,7 @@
 
 #include "cli/commands.h"
 #include "cli/messages.h"
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 
 namespace dcurve::cli {
 

@@ -122,7 +122,7 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   lro.weights = start.weights;
   lro.traversal = start.traversal.get();
   LowRankChoiceReport rep;
-  if (!choose_low_rank(m, anim.frames, start.rounded, start.snap, wo, lro, &rep, error)) return false;
+  if (!choose_low_rank(m, {plan, q}, anim.frames, start.rounded, start.snap, wo, lro, &rep, error)) return false;
   if (bytes) *bytes = rep.bytes;
   return true;
 }

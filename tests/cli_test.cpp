@@ -10,7 +10,7 @@
 #include <string>
 
 #include "encoder/io/files.h"
-#include "encoder/sim/simulation.h"
+#include "corpus/sim/simulation.h"
 #include "cli_util.h"
 #include "test_util.h"
 

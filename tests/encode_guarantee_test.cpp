@@ -7,7 +7,7 @@
 
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 #include "test_util.h"
 
 namespace dcurve::test {

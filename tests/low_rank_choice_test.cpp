@@ -6,6 +6,7 @@
 
 #include "codec/compress/container_writer.h"
 #include "codec/decompress/container_reader.h"
+#include "codec/decompress/residual_decoder.h"
 #include "encoder/encoder.h"
 #include "encoder/metrics.h"
 #include "encoder/rate/grid.h"
@@ -43,10 +44,12 @@ Animation rough_modes(uint32_t W, uint32_t H, uint32_t F, uint32_t modes, double
 }
 
 // A finished encode without a low-rank model, as encode_animation hands it to choose_low_rank:
-// the model read back from the file, the grid values before snapping, the snap distance.
+// the model read back from the file, its residual plan and coded grid values, the grid values
+// before snapping, the snap distance.
 struct PlainEncode {
   Model model;
-  std::vector<int32_t> rounded;
+  ResidualPlan plan;
+  std::vector<int32_t> coded, rounded;
   double snap = 0;
 };
 PlainEncode plain_encode(const Animation& anim, double tolerance) {
@@ -60,6 +63,7 @@ PlainEncode plain_encode(const Animation& anim, double tolerance) {
   PlainEncode p;
   EXPECT_TRUE(encode_animation(anim, o, &bytes, &rep, &err)) << err;
   EXPECT_TRUE(read_container(bytes.data(), bytes.size(), &p.model, &err)) << err;
+  EXPECT_TRUE(decode_residuals(p.model, &p.coded, &err, {}, &p.plan)) << err;
   EXPECT_TRUE(quantize_to_grid(anim, p.model.residual, &p.rounded, &err)) << err;
   // Inside the encoder's own distance, which leaves room for the decoder's float rounding.
   p.snap = 0.999 * tolerance * bbox_diagonal(anim.frames[0]);
@@ -77,9 +81,9 @@ TEST(LowRankChoice, ACountTheFirstBasisStepCutOffGetsATrial) {
   LowRankChoiceReport with, without;
   std::string err;
   Model rescued = p.model, plain = p.model;
-  ASSERT_TRUE(choose_low_rank(&rescued, anim.frames, p.rounded, p.snap, {}, lro, &with, &err)) << err;
+  ASSERT_TRUE(choose_low_rank(&rescued, {p.plan, p.coded}, anim.frames, p.rounded, p.snap, {}, lro, &with, &err)) << err;
   lro.rescue_cut_counts = false;
-  ASSERT_TRUE(choose_low_rank(&plain, anim.frames, p.rounded, p.snap, {}, lro, &without, &err)) << err;
+  ASSERT_TRUE(choose_low_rank(&plain, {p.plan, p.coded}, anim.frames, p.rounded, p.snap, {}, lro, &without, &err)) << err;
   EXPECT_TRUE(with.rescued);
   EXPECT_FALSE(without.rescued);
   EXPECT_GT(with.components, 0u);

@@ -21,7 +21,7 @@
 #include "encoder/encoder.h"
 #include "encoder/metrics.h"
 #include "encoder/rate/low_rank.h"
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 #include "test_util.h"
 
 namespace dcurve {

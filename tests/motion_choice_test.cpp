@@ -15,7 +15,7 @@
 #include "encoder/rate/motion_alternatives.h"
 #include "encoder/rate/motion_choice.h"
 #include "encoder/rate/motion_costs.h"
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 #include "test_util.h"
 
 namespace dcurve {

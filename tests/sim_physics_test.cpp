@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "encoder/sim/scene.h"
-#include "encoder/sim/simulation.h"
+#include "corpus/sim/scene.h"
+#include "corpus/sim/simulation.h"
 
 namespace dcurve {
 namespace {

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "encoder/sim/scene.h"
-#include "encoder/sim/simulation.h"
+#include "corpus/sim/scene.h"
+#include "corpus/sim/simulation.h"
 
 namespace dcurve {
 namespace {

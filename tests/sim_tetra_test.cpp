@@ -7,7 +7,7 @@
 
 #include "corpus/surfaces.h"
 #include "encoder/io/frames.h"
-#include "encoder/sim/tetrahedralize.h"
+#include "corpus/sim/tetrahedralize.h"
 
 namespace dcurve {
 namespace {

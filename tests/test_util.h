@@ -19,7 +19,7 @@
 #include "decoder/dcurve.hpp"
 #include "encoder/io/frames.h"
 #include "encoder/metrics.h"
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 
 namespace dcurve::test {
 

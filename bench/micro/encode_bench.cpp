@@ -17,7 +17,7 @@
 
 #include "bench/runner.h"
 #include "encoder/encoder.h"
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 
 namespace {
 using namespace dcurve;

@@ -10,8 +10,8 @@
 #include <ctime>
 #include <cstdio>
 
-#include "encoder/sim/scene.h"
-#include "encoder/sim/simulation.h"
+#include "corpus/sim/scene.h"
+#include "corpus/sim/simulation.h"
 
 namespace {
 

@@ -6,14 +6,9 @@
 #include <string>
 #include <vector>
 
-namespace dcurve {
+#include "encoder/animation.h"
 
-struct Animation {
-  uint32_t vertex_count = 0;
-  std::vector<uint32_t> faces;              // 3 vertex ids per triangle, shared by all frames
-  std::vector<std::vector<float>> frames;   // per frame: vertex_count * 3 floats (x, y, z)
-  double frame_rate = 30.0;                 // frames per second
-};
+namespace dcurve {
 
 // Reads one mesh. Polygons become fans of triangles from their first vertex; non-manifold
 // faces are kept as they are. Refused, with the file named: a vertex count or face count that

@@ -11,7 +11,6 @@
 #include "codec/compress/residual_encoder.h"
 #include "codec/compress/residual_values.h"
 #include "codec/decompress/model_prediction.h"
-#include "codec/decompress/residual_decoder.h"
 #include "encoder/parallel.h"
 #include "encoder/rate/frame_poses.h"
 #include "encoder/rate/low_rank.h"
@@ -180,9 +179,9 @@ bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>&
 
 }  // namespace
 
-bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
-                     double snap_distance, const WriteOptions& write_options, const LowRankChoiceOptions& options,
-                     LowRankChoiceReport* report, std::string* error) {
+bool choose_low_rank(Model* model, const PlannedResidual& planned, const std::vector<std::vector<float>>& frames,
+                     const std::vector<int32_t>& rounded, double snap_distance, const WriteOptions& write_options,
+                     const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error) {
   LowRankChoiceReport rep;
   const uint32_t F = model->meta.frame_count;
   const size_t n = size_t(model->meta.vertex_count) * 3;
@@ -207,10 +206,8 @@ bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames
   shared.traversal = &traversal_for(*model, shared, &owned);
 
   // What the residual layer pays today, frame by frame.
-  std::vector<int32_t> q_without;
-  ResidualPlan plan_without;
-  if (!decode_residuals(*model, &q_without, error, shared, &plan_without)) return false;
-  const std::vector<double> bits_without = frame_bits(*model, q_without, plan_without, shared);
+  const ResidualPlan& plan_without = planned.plan;
+  const std::vector<double> bits_without = frame_bits(*model, planned.values, plan_without, shared);
 
   // Two anchors, each screened over every count: the frame average, the classic centre, and
   // the first frame, often the cleanest shape of an animation (a rest pose, modelled or

@@ -8,6 +8,7 @@
 
 #include "codec/common/model.h"
 #include "codec/common/predictors.h"
+#include "codec/common/residual.h"
 #include "codec/compress/container_writer.h"
 
 namespace dcurve {
@@ -49,14 +50,21 @@ struct LowRankChoiceReport {
   uint64_t bytes = 0;            // the whole file kept (bytes_without when it has no model)
 };
 
+// The residual layer of a finished encode as the step that planned it left it: the plan and
+// the grid values (frame-major) its payload codes.
+struct PlannedResidual {
+  const ResidualPlan& plan;
+  const std::vector<int32_t>& values;
+};
+
 // `model` holds a finished encode without a low-rank model (residual payload coded, no PDE
-// motions); `rounded` is the grid values before snapping (frame-major), `frames` the input
-// (model units) and `snap_distance` how far snapping may move a value (model units). Screens
-// low-rank models by a cheap estimate, encodes the residual with the promising ones and keeps
-// the smallest whole file in `model` (low_rank and residual.payload replaced). False only on
-// an internal error.
-bool choose_low_rank(Model* model, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
-                     double snap_distance, const WriteOptions& write_options, const LowRankChoiceOptions& options,
-                     LowRankChoiceReport* report, std::string* error);
+// motions), planned as `planned` says; `rounded` is the grid values before snapping
+// (frame-major), `frames` the input (model units) and `snap_distance` how far snapping may
+// move a value (model units). Screens low-rank models by a cheap estimate, encodes the
+// residual with the promising ones and keeps the smallest whole file in `model` (low_rank and
+// residual.payload replaced). False only on an internal error.
+bool choose_low_rank(Model* model, const PlannedResidual& planned, const std::vector<std::vector<float>>& frames,
+                     const std::vector<int32_t>& rounded, double snap_distance, const WriteOptions& write_options,
+                     const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error);
 
 }  // namespace dcurve

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "encoder/sim/scene.h"
-#include "encoder/sim/tetrahedralize.h"
+#include "corpus/sim/scene.h"
+#include "corpus/sim/tetrahedralize.h"
 
 namespace dcurve {
 

@@ -1,11 +1,11 @@
-#include "encoder/input.h"
+#include "corpus/input.h"
 
 #include <filesystem>
 
 #include "codec/common/error.h"
 #include "encoder/io/gltf_reader.h"
 #include "encoder/io/point_cache.h"
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 
 namespace dcurve {
 

@@ -1,4 +1,4 @@
-#include "encoder/sim/scene.h"
+#include "corpus/sim/scene.h"
 
 #include <cmath>
 #include <filesystem>

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "encoder/io/frames.h"
+#include "encoder/animation.h"
 
 namespace dcurve {
 

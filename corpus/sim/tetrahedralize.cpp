@@ -1,4 +1,4 @@
-#include "encoder/sim/tetrahedralize.h"
+#include "corpus/sim/tetrahedralize.h"
 
 #include <tetgen.h>
 

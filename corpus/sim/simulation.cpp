@@ -1,4 +1,4 @@
-#include "encoder/sim/simulation.h"
+#include "corpus/sim/simulation.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

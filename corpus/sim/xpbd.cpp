@@ -1,4 +1,4 @@
-#include "encoder/sim/xpbd.h"
+#include "corpus/sim/xpbd.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "encoder/sim/scene.h"
-#include "encoder/sim/xpbd.h"
+#include "corpus/sim/scene.h"
+#include "corpus/sim/xpbd.h"
 
 namespace dcurve {
 
