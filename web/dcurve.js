@@ -17,7 +17,8 @@ export class DcurveError extends Error {
   constructor(message, status) {
     super(message);
     this.name = "DcurveError";
-    this.status = STATUS_NAMES[status] ?? "internal error"; // DCURVE_ERROR_* as its name
+    // DCURVE_ERROR_* as its name; "aborted" when the wasm module itself failed (a crash).
+    this.status = status < 0 ? "aborted" : STATUS_NAMES[status] ?? "internal error";
   }
 }
 
@@ -41,7 +42,7 @@ function guarded(call) {
     return call();
   } catch (e) {
     if (e instanceof DcurveError) throw e;
-    throw new DcurveError(`the decoder aborted (${e?.message ?? e}); load a new module`, 6);
+    throw new DcurveError(`the decoder aborted (${e?.message ?? e}); load a new module`, -1);
   }
 }
 
