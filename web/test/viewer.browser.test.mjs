@@ -28,7 +28,7 @@ test("playing moves the mesh through the clip", async () => {
   const { page } = viewer;
   const start = await page.evaluate(() => window.viewer.positionsAt(0));
   await page.evaluate(() => window.viewer.play());
-  await page.waitForFunction(() => window.viewer.info().steps >= 10);
+  await page.waitForFunction(() => window.viewer.info().steps >= 5);
   await page.evaluate(() => window.viewer.pause());
   const info = await page.evaluate(() => window.viewer.info());
   assert.ok(info.duration > 0 && info.time > 0 && info.time <= info.duration, JSON.stringify(info));

@@ -127,6 +127,7 @@ function setPlaying(playing) {
   state.playing = playing;
   $("play").textContent = playing ? "Pause" : "Play";
   clock.getDelta(); // a resumed clip starts where it stopped
+  if (state.anim) showInfo();
 }
 
 function tick() {
