@@ -1,6 +1,7 @@
 // The viewer page in headless Chromium: it loads a .dcrv (a waving sheet the native encoder
-// writes), plays it, gives at several t the positions the native decoder gives, and draws the
-// mesh (a canvas that is not blank; the screenshot's path is printed). Needs the wasm build,
+// writes), plays it, gives at several t the positions the native decoder gives, finds the
+// error against the input OBJ frames within the file's tolerance, and draws the mesh (a
+// canvas that is not blank; the screenshot's path is printed). Needs the wasm build,
 // Chromium, build/cli/dcurve and build/web/dcurve_web_native.
 import assert from "node:assert/strict";
 import { mkdirSync, mkdtempSync, rmSync } from "node:fs";
@@ -47,6 +48,15 @@ test("positions in the page match the native decoder at several t", async () => 
         assert.fail(`t ${t} value ${i}: page ${got[i]}, native ${expected[k][i]}`);
     }
   }
+});
+
+test("the page's error against the input frames is within the tolerance", async () => {
+  const { page } = viewer;
+  await page.setInputFiles("#reference", `${dir}/frames`);
+  await page.waitForFunction(() => window.viewer.info().referenceError);
+  const { referenceError, tolerance } = await page.evaluate(() => window.viewer.info());
+  assert.equal(referenceError.frames, 30);
+  assert.ok(referenceError.ofL > 0 && referenceError.ofL <= tolerance, JSON.stringify(referenceError));
 });
 
 test("the canvas shows the mesh", async () => {

@@ -21,7 +21,7 @@ const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
 const controls = new OrbitControls(camera, renderer.domElement);
 const clock = new THREE.Clock();
 
-const state = { anim: null, mesh: null, playing: false, fileBytes: 0, name: "", decodeMs: [] };
+const state = { anim: null, mesh: null, playing: false, fileBytes: 0, name: "", decodeMs: [], referenceError: null };
 
 function resize() {
   renderer.setSize(innerWidth, innerHeight, false);
@@ -75,6 +75,7 @@ async function open(buffer, name) {
   state.fileBytes = buffer.byteLength;
   state.name = name;
   state.decodeMs = [];
+  state.referenceError = null;
   state.mesh = makeObject(state.anim);
   scene.add(state.mesh);
   frameCamera(state.anim.geometry);
@@ -93,7 +94,7 @@ function decodeMsAverage() {
   return ms.length ? ms.reduce((a, b) => a + b, 0) / ms.length : 0;
 }
 
-function showInfo(extra = {}) {
+function showInfo() {
   const anim = state.anim;
   const d = anim.decoder;
   const rows = {
@@ -104,8 +105,9 @@ function showInfo(extra = {}) {
     tolerance: `${d.tolerance} of L = ${d.restDiagonal.toPrecision(4)}`,
     "decode / frame": `${decodeMsAverage().toFixed(3)} ms (evaluate + normals)`,
     "decoder memory": `${d.memoryBytes.toLocaleString()} bytes`,
-    ...extra,
   };
+  const ref = state.referenceError;
+  if (ref) rows["max error"] = `${ref.ofL.toExponential(3)} of L (${(ref.ofL / d.tolerance).toFixed(2)} x tolerance), ${ref.frames} frames`;
   $("info").replaceChildren(...Object.entries(rows).map(([k, v]) => {
     const tr = document.createElement("tr");
     tr.append(Object.assign(document.createElement("td"), { textContent: k }), Object.assign(document.createElement("td"), { textContent: v }));
@@ -165,8 +167,7 @@ async function compareWithReference(files) {
       worst = Math.max(worst, Math.hypot(xyz[v] - ref[v], xyz[v + 1] - ref[v + 1], xyz[v + 2] - ref[v + 2]));
   }
   anim.setTime(anim.time);
-  const ofL = worst / d.restDiagonal;
-  return { "max error": `${ofL.toExponential(3)} of L (${(ofL / d.tolerance).toFixed(2)} x tolerance), ${objs.length} frames` };
+  state.referenceError = { ofL: worst / d.restDiagonal, frames: objs.length };
 }
 
 // ---- wiring
@@ -193,7 +194,8 @@ $("scrub").addEventListener("input", (e) => {
 });
 $("reference").addEventListener("change", async (e) => {
   try {
-    showInfo(await compareWithReference(e.target.files));
+    await compareWithReference(e.target.files);
+    showInfo();
   } catch (err) {
     $("message").textContent = `reference: ${err.message}`;
   }
@@ -224,7 +226,10 @@ window.viewer = {
   pause: () => setPlaying(false),
   shownPositions: () => state.anim.geometry.attributes.position.array,
   positionsAt: (t) => Array.from(state.anim.setT(t).geometry.attributes.position.array),
-  info: () => ({ time: state.anim.time, duration: state.anim.duration, decodeMs: decodeMsAverage(), steps: state.decodeMs.length }),
+  info: () => ({
+    time: state.anim.time, duration: state.anim.duration, tolerance: state.anim.decoder.tolerance,
+    decodeMs: decodeMsAverage(), steps: state.decodeMs.length, referenceError: state.referenceError,
+  }),
   coveredPixels,
 };
 const file = new URLSearchParams(location.search).get("file");
