@@ -50,6 +50,17 @@ test("positions in the page match the native decoder at several t", async () => 
   }
 });
 
+test("DcurveLoader.loadAsync fetches a file by URL", async () => {
+  const counts = await viewer.page.evaluate(async () => {
+    const { DcurveLoader } = await import("/dcurve-loader.js");
+    const anim = await new DcurveLoader().loadAsync("/data/wave.dcrv");
+    const result = [anim.geometry.attributes.position.count, anim.geometry.index.count / 3];
+    anim.dispose();
+    return result;
+  });
+  assert.deepEqual(counts, [24 * 24, 2 * 23 * 23]);
+});
+
 test("the page's error against the input frames is within the tolerance", async () => {
   const { page } = viewer;
   await page.setInputFiles("#reference", `${dir}/frames`);
