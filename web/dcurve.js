@@ -66,11 +66,18 @@ class Decoder {
     }
   }
 
+  // malloc, or a DcurveError when the wasm memory cannot grow (malloc returns 0 then).
+  #alloc(bytes) {
+    const p = this.#m._malloc(Math.max(bytes, 4));
+    if (!p) throw new DcurveError(`out of memory allocating ${bytes} bytes`, 5);
+    return p;
+  }
+
   #open(bytes) {
     const m = this.#m;
-    this.#error = m._malloc(ERROR_BYTES + 8);
+    this.#error = this.#alloc(ERROR_BYTES + 8);
     const out = this.#error + ERROR_BYTES; // dcurve_decoder** / dcurve_cursor**
-    const src = m._malloc(Math.max(bytes.length, 1));
+    const src = this.#alloc(bytes.length);
     m.HEAPU8.set(bytes, src);
     const status = m._dcurve_open_memory(src, bytes.length, out, this.#error, ERROR_BYTES);
     m._free(src); // the decoder keeps its own copy of what it needs
@@ -79,8 +86,8 @@ class Decoder {
     this.#check(m._dcurve_cursor_create(this.#decoder, out));
     this.#cursor = m.HEAPU32[out >> 2];
     this.#values = 3 * m._dcurve_vertex_count(this.#decoder);
-    this.#xyz = m._malloc(this.#values * 4 || 4);
-    this.#normals = m._malloc(this.#values * 4 || 4);
+    this.#xyz = this.#alloc(this.#values * 4);
+    this.#normals = this.#alloc(this.#values * 4);
   }
 
   #check(status) {

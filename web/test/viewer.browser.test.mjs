@@ -4,7 +4,7 @@
 // canvas that is not blank; the screenshot's path is printed). Needs the wasm build,
 // Chromium, build/cli/dcurve and build/web/dcurve_web_native.
 import assert from "node:assert/strict";
-import { mkdirSync, mkdtempSync, rmSync } from "node:fs";
+import { mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { after, before, test } from "node:test";
 import { fileURLToPath } from "node:url";
@@ -80,4 +80,14 @@ test("the canvas shows the mesh", async () => {
   console.log(`screenshot: ${out}viewer.png (${covered} of ${total} pixels drawn)`);
   assert.ok(covered > total * 0.02, `only ${covered} of ${total} pixels differ from the background`);
   assert.deepEqual(errors, []);
+});
+
+test("a damaged file chosen in the page shows the decoder's message", async () => {
+  const { page } = viewer;
+  const bytes = readFileSync(file);
+  writeFileSync(`${dir}/damaged.dcrv`, bytes.subarray(0, bytes.length >> 1));
+  await page.setInputFiles("#file", `${dir}/damaged.dcrv`);
+  await page.waitForFunction(() => document.getElementById("message").textContent !== "");
+  const message = await page.evaluate(() => document.getElementById("message").textContent);
+  assert.match(message, /^damaged\.dcrv: \S/);
 });

@@ -172,9 +172,12 @@ async function compareWithReference(files) {
 
 // ---- wiring
 
+// A chosen or dropped file; a refusal is already shown in the panel.
+const openFile = async (file) => open(await file.arrayBuffer(), file.name).catch(() => {});
+
 $("file").addEventListener("change", async (e) => {
   const file = e.target.files[0];
-  if (file) await open(await file.arrayBuffer(), file.name);
+  if (file) await openFile(file);
 });
 addEventListener("dragover", (e) => { e.preventDefault(); document.body.classList.add("dragging"); });
 addEventListener("dragleave", () => document.body.classList.remove("dragging"));
@@ -182,7 +185,7 @@ addEventListener("drop", async (e) => {
   e.preventDefault();
   document.body.classList.remove("dragging");
   const file = e.dataTransfer.files[0];
-  if (file) await open(await file.arrayBuffer(), file.name);
+  if (file) await openFile(file);
 });
 $("play").addEventListener("click", () => setPlaying(!state.playing));
 $("speed").addEventListener("input", (e) => { if (state.anim) state.anim.speed = Number(e.target.value) || 0; });
