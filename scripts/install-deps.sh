@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages dcurve builds against, then Node and the npm packages of the
-# interoperability tests (tests/interop: glTF-Transform and the Khronos glTF validator).
+# interoperability tests (tests/interop: glTF-Transform and the Khronos glTF validator) and of
+# the web decoder (web/: three, fzstd, playwright-core; Emscripten and Chromium from Debian).
 # Idempotent: does nothing when all are present. Quiet on success; on failure prints the
 # installer's output and exits non-zero.
 set -euo pipefail
@@ -10,6 +11,7 @@ packages=(
   libeigen3-dev libdraco-dev draco libopenmesh-dev libtet1.5-dev libzstd-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
   libmeshoptimizer-dev libhtscodecs-dev clang libclang-rt-14-dev libtinygltf-dev
+  emscripten chromium
 )
 # Node from Debian unless a node and npm are already on the PATH (e.g. NodeSource's nodejs,
 # which bundles npm and conflicts with Debian's npm package).
@@ -24,19 +26,26 @@ for p in "${packages[@]}"; do
   fi
 done
 
-interop=$(cd "$(dirname "$0")/.." && pwd)/tests/interop
-install_npm_packages() {
-  [ -d "$interop/node_modules/@gltf-transform/core" ] && [ -d "$interop/node_modules/gltf-validator" ] && return 0
-  local npm_log
+root=$(cd "$(dirname "$0")/.." && pwd)
+# npm ci in folder $1 unless the packages $2... are there.
+npm_ci() {
+  local dir=$1 npm_log p
+  shift
+  for p in "$@"; do [ -d "$dir/node_modules/$p" ] || break; done
+  [ -d "$dir/node_modules/$p" ] && return 0
   npm_log=$(mktemp)
-  echo "install-deps: npm ci in tests/interop" >&2
-  if ! (cd "$interop" && npm ci --no-audit --no-fund) >"$npm_log" 2>&1; then
+  echo "install-deps: npm ci in ${dir#"$root"/}" >&2
+  if ! (cd "$dir" && npm ci --no-audit --no-fund) >"$npm_log" 2>&1; then
     cat "$npm_log" >&2
     rm -f "$npm_log"
-    echo "install-deps: npm ci failed in $interop" >&2
+    echo "install-deps: npm ci failed in $dir" >&2
     exit 1
   fi
   rm -f "$npm_log"
+}
+install_npm_packages() {
+  npm_ci "$root/tests/interop" @gltf-transform/core gltf-validator
+  npm_ci "$root/web" three fzstd playwright-core
 }
 
 if [ ${#missing[@]} -eq 0 ]; then

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # The test command: installs dependencies, builds (Release), runs every test with ctest,
+# builds the WebAssembly decoder and runs its Node and headless-Chromium tests (web/test.sh),
 # then does the same under AddressSanitizer + UndefinedBehaviorSanitizer, then fuzzes the
 # decoder and the mesh readers for a bounded time each when the fuzz script exists. Exits
 # non-zero on any failure.
@@ -14,6 +15,9 @@ echo "== Release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON >/dev/null
 cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs"
+
+echo "== WebAssembly decoder: build, Node and Chromium tests"
+DCURVE_WEB_REQUIRED=1 web/test.sh build
 
 echo "== ASan + UBSan build and tests"
 # -O1 -g1: sanitizers need no more. DCURVE_TOOLS=OFF: the libraries (codec, decoder, encoder,

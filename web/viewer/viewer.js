@@ -1,0 +1,239 @@
+// The viewer page: open or drop a .dcrv, play, scrub, set the speed, see the file's figures
+// and the decode time per frame, and optionally the error against a folder of OBJ frames.
+// `?file=URL` opens a file at start; window.viewer is what web/test/browser.test.mjs drives.
+import * as THREE from "three";
+import { OrbitControls } from "three/addons/controls/OrbitControls.js";
+
+import { DcurveLoader } from "../dcurve-loader.js";
+
+const $ = (id) => document.getElementById(id);
+const BACKGROUND = 0x20232a;
+const DECODE_WINDOW = 60; // frames the shown decode time averages
+
+const renderer = new THREE.WebGLRenderer({ canvas: $("view"), antialias: true });
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(BACKGROUND);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x404050, 1.5));
+const sun = new THREE.DirectionalLight(0xffffff, 2);
+sun.position.set(1, 2, 3);
+scene.add(sun);
+const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
+const controls = new OrbitControls(camera, renderer.domElement);
+const clock = new THREE.Clock();
+
+const state = { anim: null, mesh: null, playing: false, fileBytes: 0, name: "", decodeMs: [], referenceError: null };
+
+function resize() {
+  renderer.setSize(innerWidth, innerHeight, false);
+  renderer.setPixelRatio(devicePixelRatio);
+  camera.aspect = innerWidth / innerHeight;
+  camera.updateProjectionMatrix();
+}
+
+// A mesh when the file has faces, else points.
+function makeObject(anim) {
+  if (anim.geometry.index) {
+    const material = new THREE.MeshStandardMaterial({ color: 0x8fb3e0, roughness: 0.6, side: THREE.DoubleSide });
+    return new THREE.Mesh(anim.geometry, material);
+  }
+  return new THREE.Points(anim.geometry, new THREE.PointsMaterial({ color: 0x8fb3e0, size: 3, sizeAttenuation: false }));
+}
+
+// Looks at the whole mesh across its thinnest extent (a sheet face-on), slightly tilted.
+function frameCamera(geometry) {
+  geometry.computeBoundingBox();
+  const size = geometry.boundingBox.getSize(new THREE.Vector3()).toArray();
+  const thin = size.indexOf(Math.min(...size));
+  const direction = new THREE.Vector3(0.3, 0.3, 0.3).setComponent(thin, 1).normalize();
+  const sphere = geometry.boundingSphere;
+  const distance = sphere.radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) || 1;
+  camera.position.copy(sphere.center).addScaledVector(direction, distance);
+  camera.near = distance / 100;
+  camera.far = distance * 100;
+  camera.updateProjectionMatrix();
+  controls.target.copy(sphere.center);
+  controls.update();
+}
+
+function unload() {
+  if (!state.anim) return;
+  scene.remove(state.mesh);
+  state.mesh.material.dispose();
+  state.anim.dispose();
+  state.anim = state.mesh = null;
+}
+
+async function open(buffer, name) {
+  $("message").textContent = "";
+  unload();
+  try {
+    state.anim = await new DcurveLoader().parse(buffer);
+  } catch (e) {
+    $("message").textContent = `${name}: ${e.message}`;
+    throw e;
+  }
+  state.fileBytes = buffer.byteLength;
+  state.name = name;
+  state.decodeMs = [];
+  state.referenceError = null;
+  state.mesh = makeObject(state.anim);
+  scene.add(state.mesh);
+  frameCamera(state.anim.geometry);
+  for (const id of ["play", "scrub", "reference"]) $(id).disabled = false;
+  showInfo();
+}
+
+async function openUrl(url) {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
+  return open(await response.arrayBuffer(), url.split("/").pop());
+}
+
+function decodeMsAverage() {
+  const ms = state.decodeMs;
+  return ms.length ? ms.reduce((a, b) => a + b, 0) / ms.length : 0;
+}
+
+function showInfo() {
+  const anim = state.anim;
+  const d = anim.decoder;
+  const rows = {
+    file: `${state.name}, ${state.fileBytes.toLocaleString()} bytes`,
+    vertices: d.vertexCount.toLocaleString(),
+    faces: d.faceCount.toLocaleString(),
+    frames: `${d.frameCount} at ${d.frameRate || "? (30 assumed)"} fps`,
+    tolerance: `${d.tolerance} of L = ${d.restDiagonal.toPrecision(4)}`,
+    "decode / frame": `${decodeMsAverage().toFixed(3)} ms (evaluate + normals)`,
+    "decoder memory": `${d.memoryBytes.toLocaleString()} bytes`,
+  };
+  const ref = state.referenceError;
+  if (ref) rows["max error"] = `${ref.ofL.toExponential(3)} of L (${(ref.ofL / d.tolerance).toFixed(2)} x tolerance), ${ref.frames} frames`;
+  $("info").replaceChildren(...Object.entries(rows).map(([k, v]) => {
+    const tr = document.createElement("tr");
+    tr.append(Object.assign(document.createElement("td"), { textContent: k }), Object.assign(document.createElement("td"), { textContent: v }));
+    return tr;
+  }));
+}
+
+// One decoded time step: record its decode time and move the slider.
+function showStep() {
+  const anim = state.anim;
+  state.decodeMs.push(anim.decodeMs);
+  if (state.decodeMs.length > DECODE_WINDOW) state.decodeMs.shift();
+  const t = anim.duration > 0 ? anim.time / anim.duration : 0;
+  $("scrub").value = t;
+  $("t").textContent = t.toFixed(3);
+}
+
+function setPlaying(playing) {
+  state.playing = playing;
+  $("play").textContent = playing ? "Pause" : "Play";
+  clock.getDelta(); // a resumed clip starts where it stopped
+  if (state.anim) showInfo();
+}
+
+function tick() {
+  const dt = clock.getDelta();
+  if (state.anim && state.playing) {
+    state.anim.update(dt);
+    showStep();
+    if (state.decodeMs.length % 15 === 0) showInfo();
+  }
+  renderer.render(scene, camera);
+}
+
+// ---- reference frames: the largest distance to a folder of OBJ frames, in units of L
+
+function objVertices(text) {
+  const xyz = [];
+  for (const line of text.split("\n"))
+    if (line.startsWith("v ")) xyz.push(...line.trim().split(/\s+/).slice(1, 4).map(Number));
+  return xyz;
+}
+
+async function compareWithReference(files) {
+  const anim = state.anim;
+  const d = anim.decoder;
+  const objs = [...files].filter((f) => /\.obj$/i.test(f.name));
+  objs.sort((a, b) => a.name.localeCompare(b.name, undefined, { numeric: true }));
+  if (objs.length !== d.frameCount) throw new Error(`${objs.length} OBJ files for ${d.frameCount} frames`);
+  const xyz = new Float32Array(d.vertexCount * 3);
+  let worst = 0;
+  for (const [f, file] of objs.entries()) {
+    const ref = objVertices(await file.text());
+    if (ref.length !== xyz.length) throw new Error(`${file.name}: ${ref.length / 3} vertices, the file has ${d.vertexCount}`);
+    d.evaluateFrame(f, xyz);
+    for (let v = 0; v < xyz.length; v += 3)
+      worst = Math.max(worst, Math.hypot(xyz[v] - ref[v], xyz[v + 1] - ref[v + 1], xyz[v + 2] - ref[v + 2]));
+  }
+  anim.setTime(anim.time);
+  state.referenceError = { ofL: worst / d.restDiagonal, frames: objs.length };
+}
+
+// ---- wiring
+
+// A chosen or dropped file; a refusal is already shown in the panel.
+const openFile = async (file) => open(await file.arrayBuffer(), file.name).catch(() => {});
+
+$("file").addEventListener("change", async (e) => {
+  const file = e.target.files[0];
+  if (file) await openFile(file);
+});
+addEventListener("dragover", (e) => { e.preventDefault(); document.body.classList.add("dragging"); });
+addEventListener("dragleave", () => document.body.classList.remove("dragging"));
+addEventListener("drop", async (e) => {
+  e.preventDefault();
+  document.body.classList.remove("dragging");
+  const file = e.dataTransfer.files[0];
+  if (file) await openFile(file);
+});
+$("play").addEventListener("click", () => setPlaying(!state.playing));
+$("speed").addEventListener("input", (e) => { if (state.anim) state.anim.speed = Number(e.target.value) || 0; });
+$("scrub").addEventListener("input", (e) => {
+  setPlaying(false);
+  state.anim.setT(Number(e.target.value));
+  showStep();
+  showInfo();
+});
+$("reference").addEventListener("change", async (e) => {
+  try {
+    await compareWithReference(e.target.files);
+    showInfo();
+  } catch (err) {
+    $("message").textContent = `reference: ${err.message}`;
+  }
+});
+addEventListener("resize", resize);
+resize();
+renderer.setAnimationLoop(tick);
+
+// Non-background pixels of a freshly rendered frame, read back before it is presented.
+function coveredPixels() {
+  renderer.render(scene, camera);
+  const gl = renderer.getContext();
+  const { drawingBufferWidth: width, drawingBufferHeight: height } = gl;
+  const pixels = new Uint8Array(width * height * 4);
+  gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+  const bg = new THREE.Color(BACKGROUND).convertLinearToSRGB();
+  const [r, g, b] = [bg.r, bg.g, bg.b].map((c) => Math.round(c * 255));
+  let covered = 0;
+  for (let i = 0; i < pixels.length; i += 4)
+    if (Math.abs(pixels[i] - r) + Math.abs(pixels[i + 1] - g) + Math.abs(pixels[i + 2] - b) > 12) ++covered;
+  return { covered, total: width * height };
+}
+
+window.viewer = {
+  openUrl,
+  stopRendering: () => renderer.setAnimationLoop(null), // quiet page for benchmarks
+  play: () => setPlaying(true),
+  pause: () => setPlaying(false),
+  shownPositions: () => state.anim.geometry.attributes.position.array,
+  positionsAt: (t) => Array.from(state.anim.setT(t).geometry.attributes.position.array),
+  info: () => ({
+    time: state.anim.time, duration: state.anim.duration, tolerance: state.anim.decoder.tolerance,
+    decodeMs: decodeMsAverage(), steps: state.decodeMs.length, referenceError: state.referenceError,
+  }),
+  coveredPixels,
+};
+const file = new URLSearchParams(location.search).get("file");
+window.viewer.ready = file ? openUrl(file) : Promise.resolve();
