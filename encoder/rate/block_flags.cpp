@@ -7,6 +7,7 @@
 #include "codec/compress/residual_encoder.h"
 #include "codec/decompress/model_prediction.h"
 #include "codec/decompress/residual_decoder.h"
+#include "encoder/rate/motion_costs.h"
 
 namespace dcurve {
 namespace {
@@ -35,12 +36,13 @@ bool use_block_flags(Model* model, BlockFlagUse when, std::string* error) {
     if (!recode(basis, {}, when, &model->low_rank.basis_payload, error)) return false;
   }
   if (model->residual.payload.empty()) return true;
+  // The prediction a decoder makes: from the PDE coefficients as the file stores them,
+  // which differ from the in-memory ones in the last bits (a rounding that moved one grid
+  // value made the recoded payload's checksum fail on a sheet encode).
   std::vector<int32_t> prediction;
+  if (!stored_model_prediction(*model, &prediction, error)) return false;
   ResidualOptions options;
-  if (has_model_prediction(*model)) {
-    if (!model_grid_prediction(*model, UINT64_MAX, &prediction, error)) return false;
-    options.model_prediction = &prediction;
-  }
+  if (!prediction.empty()) options.model_prediction = &prediction;
   return recode(*model, options, when, &model->residual.payload, error);
 }
 
