@@ -1,6 +1,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "bench/inbetween_bench.h"
 #include "bench/plot.h"
 #include "bench/report.h"
 #include "bench/runner.h"
@@ -57,6 +58,37 @@ int run_protocol(const Opts& o, const std::string& protocol) {
   return 0;
 }
 
+// In-between errors at held-out odd frames (bench/inbetween_bench.h) of each input.
+template <class Opts>
+int run_inbetween(const Opts& o) {
+  EncodeOptions eo;
+  eo.tolerance = o.tolerances.empty() ? 1e-3 : o.tolerances[0];
+  eo.effort = o.effort;
+  eo.grid_refinement = o.grid;
+  std::vector<bench::InbetweenResult> results;
+  for (const auto& arg : o.inputs) {
+    std::string name, err;
+    Animation anim;
+    bench::InbetweenResult r;
+    if (!load_input(arg, &name, &anim, &err)) {
+      std::fprintf(stderr, "dcurve bench: %s\n", err.c_str());
+      return 1;
+    }
+    if (o.max_frames > 0 && anim.frames.size() > o.max_frames) anim.frames.resize(o.max_frames);
+    if (!bench::run_inbetween_bench(name, anim, eo, o.with_pde, &r, &err)) {
+      std::fprintf(stderr, "dcurve bench: %s: %s\n", arg.c_str(), err.c_str());
+      return 1;
+    }
+    results.push_back(r);
+    if (!o.json) std::fprintf(stderr, "%s done\n", name.c_str());
+  }
+  if (o.json)
+    std::printf("%s\n", bench::inbetween_json(results).dump().c_str());
+  else
+    std::printf("%s", bench::inbetween_table(results).c_str());
+  return 0;
+}
+
 bool write_text(const std::string& path, const std::string& text) {
   std::string err;
   if (write_file_atomic(path, text.data(), text.size(), &err)) return true;
@@ -74,6 +106,8 @@ Action add_bench(CLI::App& app) {
     bool json = false;
     uint32_t max_frames = 0;
     int effort = EncodeOptions().effort;
+    bool inbetween = false, with_pde = false;
+    double grid = 0;
   };
   auto o = std::make_shared<Opts>();
   app.add_option("inputs", o->inputs, "Frame folders, scene files or built-in scene names (none: built-in corpus)");
@@ -96,6 +130,14 @@ Action add_bench(CLI::App& app) {
   app.add_option("--plot", o->plot, "Also write the rate-distortion plot (SVG) to this file");
   app.add_option("--protocol", o->protocol, "Run a paper's own protocol instead of the comparison")
       ->check(CLI::IsMember({"paper2024", "paper2022"}));
+  app.add_flag("--inbetween", o->inbetween,
+               "Instead of the comparison: encode each input's even frames, decode at the odd frames' times and "
+               "print the in-between RMSE of every rule, of the rule the file records, and of the rules through "
+               "the true even frames (first --tolerance only)");
+  app.add_flag("--with-pde", o->with_pde, "With --inbetween: also a file with a PDE model whose motions are all kept");
+  app.add_option("--grid", o->grid,
+                 "With --inbetween: dcurve's residual grid (as dcurve encode --grid; 0 = auto, 1..16 skips the trials)")
+      ->check(CLI::Range(0.0, 16.0));
   return [o]() {
     if (!o->protocol.empty()) return run_protocol(*o, o->protocol);
     if (o->inputs.empty()) {
@@ -103,6 +145,7 @@ Action add_bench(CLI::App& app) {
       for (const auto& n : builtin_scene_names())
         if (n != "rope") o->inputs.push_back(n);
     }
+    if (o->inbetween) return run_inbetween(*o);
     if (o->tolerances.empty()) o->tolerances = {1e-3};
     std::vector<std::pair<std::string, Animation>> inputs;
     for (const auto& arg : o->inputs) {
