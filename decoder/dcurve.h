@@ -10,7 +10,8 @@
  * belongs to one thread at a time. dcurve_evaluate* on the decoder itself lock an internal
  * cursor (safe from any thread, one call at a time); give each playing thread a cursor.
  * Memory: the decoder keeps the compressed chunks (open_memory) or reads them from the
- * file on demand (open_file); each cursor holds one decoded chunk and the frame before it. */
+ * file on demand (open_file); each cursor holds one decoded chunk and the frame before it,
+ * and under a cubic in-between rule copies of up to six frames. */
 #ifndef DCURVE_H
 #define DCURVE_H
 #include <stddef.h>

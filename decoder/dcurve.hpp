@@ -4,7 +4,9 @@
 // Memory: an open Decoder holds the file's shared sections (faces, curves, models), the
 // chunk index and either the compressed chunks (open_memory) or nothing of them
 // (open_file: chunks are read from the file when a frame needs them). Decoded frames live
-// in a Cursor: one chunk and the frame before it, so memory does not grow with the clip.
+// in a Cursor: one chunk and the frame before it (and, under a cubic in-between rule,
+// copies of the up to six frames around the time evaluated), so memory does not grow with
+// the clip.
 //
 // Thread safety: a Decoder is immutable after opening; any number of threads may share
 // it. A Cursor belongs to one thread at a time (make one per thread). The Decoder's own
