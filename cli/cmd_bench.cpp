@@ -2,6 +2,7 @@
 #include <filesystem>
 
 #include "bench/inbetween_bench.h"
+#include "bench/paper2024_faithful.h"
 #include "bench/plot.h"
 #include "bench/report.h"
 #include "bench/runner.h"
@@ -30,6 +31,27 @@ bool load_input(const std::string& arg, std::string* name, Animation* anim, std:
   return load_animation_input(arg, true, progress_bar("simulate"), anim, error);
 }
 
+// The 2024 protocol as the paper describes it (bench/paper2024_faithful.h) and the honest one
+// on the same full-length lines, when the input has lines along an axis (the rope's).
+bool add_faithful_2024(const Animation& anim, nlohmann::json* result, std::string* table, std::string* error) {
+  Curves lines;
+  std::string why;
+  if (!surface_lines(anim, &lines, &why)) {
+    (*result)["faithful"] = nullptr;
+    if (table) *table += "(no full-length lines along an axis: " + why + ")\n";
+    return true;
+  }
+  nlohmann::json faithful, honest;
+  std::string faithful_table, honest_table;
+  if (!run_paper2024_faithful(anim, lines, &faithful, table ? &faithful_table : nullptr, error) ||
+      !run_paper_protocol("paper2024", anim, lines, &honest, table ? &honest_table : nullptr, error))
+    return false;
+  (*result)["faithful"] = faithful;
+  (*result)["honest_on_lines"] = honest;
+  if (table) *table += "\n" + faithful_table + "\nThe honest protocol on the same lines:\n" + honest_table;
+  return true;
+}
+
 // The papers' own protocols (bench/paper_protocols.h) on each input, with curves extracted
 // from frame 0 as the encoder would.
 template <class Opts>
@@ -51,6 +73,10 @@ int run_protocol(const Opts& o, const std::string& protocol) {
       return 1;
     }
     result["input"] = name;
+    if (protocol == "paper2024" && !add_faithful_2024(anim, &result, o.json ? nullptr : &table, &err)) {
+      std::fprintf(stderr, "dcurve bench: %s: %s\n", arg.c_str(), err.c_str());
+      return 1;
+    }
     all.push_back(result);
     if (!o.json) std::printf("%s: %s\n%s\n", name.c_str(), protocol.c_str(), table.c_str());
   }
