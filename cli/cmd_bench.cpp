@@ -91,28 +91,32 @@ int run_inbetween(const Opts& o) {
   eo.tolerance = o.tolerances.empty() ? 1e-3 : o.tolerances[0];
   eo.effort = o.effort;
   eo.grid_refinement = o.grid;
+  // An input that fails is reported and skipped: the others' rows are still printed, and
+  // the exit status says that one failed.
   std::vector<bench::InbetweenResult> results;
+  int status = 0;
   for (const auto& arg : o.inputs) {
     std::string name, err;
     Animation anim;
     bench::InbetweenResult r;
     if (!load_input(arg, &name, &anim, &err)) {
       std::fprintf(stderr, "dcurve bench: %s\n", err.c_str());
-      return 1;
+      status = 1;
+      continue;
     }
     if (o.max_frames > 0 && anim.frames.size() > o.max_frames) anim.frames.resize(o.max_frames);
     if (!bench::run_inbetween_bench(name, anim, eo, o.with_pde, &r, &err)) {
       std::fprintf(stderr, "dcurve bench: %s: %s\n", arg.c_str(), err.c_str());
-      return 1;
+      status = 1;
+      continue;
     }
     results.push_back(r);
-    if (!o.json) std::fprintf(stderr, "%s done\n", name.c_str());
   }
   if (o.json)
     std::printf("%s\n", bench::inbetween_json(results).dump().c_str());
   else
     std::printf("%s", bench::inbetween_table(results).c_str());
-  return 0;
+  return status;
 }
 
 bool write_text(const std::string& path, const std::string& text) {
