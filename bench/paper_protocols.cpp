@@ -14,6 +14,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Six fitted samples 0.2 apart: above pi / (2 * 0.2) e^{-alpha t} is nearly an indicator of
+// frame 0 and sin / cos alias between the samples (issue 39 measured odd-frame errors 4-25x
+// worse with the former cap of 30).
+const double kMaxTime2024 = std::acos(-1.0) / (2 * 0.2);
+
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
@@ -59,16 +64,21 @@ std::string fmt(const char* f, double v) {
 }
 
 // Fits the even frames with one PDE variant and measures every frame 0..10.
+// params (may be null): the chosen time and space parameters of every curve and axis.
 bool pde_errors_2024(const std::vector<CurveFrames>& truth, const std::vector<CurveFrames>& fit_input,
                      const std::vector<double>& tau_all, Basis basis, bool rigid, std::vector<FrameError>* errors,
-                     double* fit_ms, std::string* error) {
+                     double* fit_ms, std::string* error, std::vector<std::pair<double, double>>* params = nullptr) {
   FitOptions options;
   options.basis = basis;
   options.remove_rigid = rigid;
+  options.max_time_param = kMaxTime2024;
   std::vector<CurveFit> fits;
   Clock::time_point start = Clock::now();
   if (!fit_curves(fit_input, options, 0, &fits, error)) return false;
   *fit_ms = ms_since(start);
+  if (params)
+    for (const CurveFit& f : fits)
+      for (const AxisFit& a : f.axis) params->emplace_back(a.motion.time_param, a.motion.space_param);
   errors->assign(tau_all.size(), FrameError());
   std::vector<double> predicted;
   for (size_t c = 0; c < truth.size(); ++c) {
@@ -108,7 +118,15 @@ bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* resul
   }
   std::vector<FrameError> pde(kFrames), spline(kFrames);
   double pde_ms = 0;
-  if (!pde_errors_2024(truth, fit_input, tau_all, Basis::Pde32, true, &pde, &pde_ms, error)) return false;
+  std::vector<std::pair<double, double>> params;
+  if (!pde_errors_2024(truth, fit_input, tau_all, Basis::Pde32, true, &pde, &pde_ms, error, &params)) return false;
+  std::vector<double> alphas, rs;
+  for (auto [alpha, r] : params) {
+    alphas.push_back(alpha);
+    rs.push_back(r);
+  }
+  std::sort(alphas.begin(), alphas.end());
+  std::sort(rs.begin(), rs.end());
   std::vector<double> splined, left, right;
   for (uint32_t c = 0; c < C; ++c) {
     const CurveFrames& t = truth[c];
@@ -151,7 +169,10 @@ bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* resul
   j["frames_predicted"] = {1, 3, 5, 7, 9};
   j["pde"] = {{"mean_EA", pde_ea}, {"max_EM", pde_em}, {"mean_EA_predicted", pde_ea_odd},
               {"max_EM_predicted", pde_em_odd}, {"basis", "pde32"}, {"rigid_removal", true},
-              {"design_variables", size_t(C) * 32 * 3}, {"fit_ms", pde_ms}};
+              {"design_variables", size_t(C) * 32 * 3}, {"fit_ms", pde_ms},
+              {"alpha", {{"min", alphas.front()}, {"median", alphas[alphas.size() / 2]}, {"max", alphas.back()}}},
+              {"r", {{"min", rs.front()}, {"median", rs[rs.size() / 2]}, {"max", rs.back()}}},
+              {"alpha_cap", kMaxTime2024}};
   j["bspline"] = {{"mean_EA", bs_ea}, {"max_EM", bs_em}, {"mean_EA_predicted", bs_ea_odd},
                   {"max_EM_predicted", bs_em_odd}, {"control_points", 50}};
   // A PDE error of exactly zero leaves the ratio undefined: JSON null, table "inf".
@@ -190,6 +211,10 @@ bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* resul
        "   (paper's rope: 6.68, 13.91)\n";
   t += " predicted frames only: PDE " + fmt("%.6f", pde_ea_odd) + " / " + fmt("%.6f", pde_em_odd) + ", B-spline " +
        fmt("%.6f", bs_ea_odd) + " / " + fmt("%.6f", bs_em_odd) + "; PDE fit " + fmt("%.1f", pde_ms) + " ms\n";
+  t += " pde32 + rigid parameters per curve and axis: alpha median " + fmt("%.3f", alphas[alphas.size() / 2]) + " (" +
+       fmt("%.3f", alphas.front()) + " - " + fmt("%.3f", alphas.back()) + ", cap " + fmt("%.3f", kMaxTime2024) +
+       "), r median " + fmt("%.3f", rs[rs.size() / 2]) + " (" + fmt("%.3f", rs.front()) + " - " + fmt("%.3f", rs.back()) +
+       ")\n";
   t += vt;
   *result = j;
   if (table) *table = t;

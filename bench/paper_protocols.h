@@ -2,6 +2,7 @@
 //
 // "paper2024" (2024 paper, sec. 5, Table 1): frames 0, 2, ..., 10 are fitted, 1, 3, ..., 9
 //   predicted (tau = n / 10). PDE: the 32-term basis fitted per curve after rigid-motion removal
+//   (time parameter searched up to pi / (2 * 0.2), where six samples 0.2 apart stop aliasing)
 //   (Kabsch, restored between fitted frames by slerp + linear centroid), stored as float and
 //   evaluated through codec/basis. Baseline: a least-squares cubic B-spline with 50 control
 //   points per curve and frame (fewer when the curve has fewer points), linearly interpolated

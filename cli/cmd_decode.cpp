@@ -6,13 +6,14 @@
 #include "cli/decode_output.h"
 #include "cli/messages.h"
 #include "codec/common/error.h"
+#include "codec/common/inbetween.h"
 #include "decoder/dcurve.hpp"
 
 namespace dcurve::cli {
 namespace {
 
 struct DecodeOpts {
-  std::string input, output, format = "obj";
+  std::string input, output, format = "obj", interp = "file";
   int frames = 0;
   double t = -1, seconds = -1;
   bool force = false;
@@ -63,6 +64,8 @@ int run_decode(const DecodeOpts& o, const Messages& msg) {
   if (!sink) return msg.error(err);
   std::vector<float> xyz(size_t(dec->vertex_count()) * 3);
   auto cursor = dec->make_cursor();
+  Inbetween rule;
+  if (inbetween_from_name(o.interp.c_str(), &rule)) cursor->set_interpolation(Interpolation(int(rule)));
   auto progress = msg.progress("decode");
   for (size_t i = 0; i < times.size(); ++i) {
     Error e;
@@ -94,6 +97,12 @@ Action add_decode(CLI::App& app) {
   frames->excludes(t)->excludes(seconds);
   t->excludes(seconds);
   app.add_option("--format", o->format, "Frame format in a folder output")->check(CLI::IsMember({"obj", "ply"}))->capture_default_str();
+  app.add_option("--interp", o->interp,
+                 "Between stored frames: file (the rule the file records), linear, catmull-rom or hermite4 "
+                 "(cubics through the neighbouring frames). A PDE model the file carries is followed by every "
+                 "rule; stored frames decode the same under all")
+      ->check(CLI::IsMember({"file", "linear", "catmull-rom", "hermite4"}))
+      ->capture_default_str();
   app.add_flag("--force", o->force, "Replace the mesh files (.obj/.ply/.off) of an output folder that already holds some");
   msg->add_flags(app);
   return [o, msg]() {

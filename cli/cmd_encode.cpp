@@ -8,6 +8,7 @@
 #include "cli/decode_output.h"
 #include "cli/messages.h"
 #include "cli/number_range.h"
+#include "codec/common/inbetween.h"
 #include "encoder/curves/report_json.h"
 #include "encoder/encoder.h"
 #include "corpus/input.h"
@@ -53,6 +54,7 @@ Action add_encode(CLI::App& app) {
     InputOptions input_options;
     int threads = 0, effort = EncodeOptions().effort;
     std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto", chunk_frames = "auto";
+    std::string inbetween = "auto";
     uint32_t curve_points = 64;
   };
   auto o = std::make_shared<Opts>();
@@ -107,6 +109,11 @@ Action add_encode(CLI::App& app) {
                  "1..4096. A decoder decodes one chunk to reach any of its frames and holds two")
       ->check(CLI::IsMember({"auto"}) | CLI::Range(1u, kMaxChunkFrames))
       ->capture_default_str();
+  app.add_option("--inbetween", o->inbetween,
+                 "In-between rule the file records (how a decoder fills the time between frames): auto (the one "
+                 "that best predicts held-out input frames), linear, catmull-rom or hermite4")
+      ->check(CLI::IsMember({"auto", "linear", "catmull-rom", "hermite4"}))
+      ->capture_default_str();
   app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")
       ->check(CLI::Range(2, 1000000))
       ->capture_default_str();
@@ -147,6 +154,8 @@ Action add_encode(CLI::App& app) {
     eo.effort = o->effort;
     eo.chunk_frames = o->chunk_frames == "auto" ? 0 : uint32_t(std::stoul(o->chunk_frames));
     eo.keep_all_motions = o->keep_all_motions;
+    Inbetween forced;
+    eo.inbetween = inbetween_from_name(o->inbetween.c_str(), &forced) ? int(forced) : -1;
     eo.curve_points = o->curve_points;
     eo.progress = msg->progress("encode");
     std::vector<uint8_t> bytes;
@@ -174,6 +183,7 @@ Action add_encode(CLI::App& app) {
                         {"low_rank_components", rep.low_rank_components},
                         {"grid_refinement", rep.grid_refinement},
                         {"chunk_frames", rep.chunk_frames},
+                        {"inbetween", inbetween_name(rep.inbetween)},
                         {"effort", o->effort},
                         {"low_rank_bytes", rep.low_rank_bytes},
                         {"curve_fallback", rep.curve_fallback}};

@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "codec/common/container_format.h"
+#include "codec/common/inbetween.h"
 #include "codec/common/residual.h"
 #include "codec/compress/low_rank_writer.h"
 #include "codec/decompress/container_reader.h"
@@ -86,6 +87,7 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
           {"units", m.meta.units},
           {"tolerance", m.meta.tolerance},
           {"rest_diagonal", m.meta.diag},
+          {"inbetween", inbetween_name(m.meta.inbetween)},
           {"bpvf", 8.0 * double(bytes.size()) / vf},
           {"motion_bytes", bytes.size() - connectivity},
           {"connectivity_bytes", connectivity},
@@ -141,8 +143,9 @@ void print_text(const nlohmann::json& j) {
               (unsigned long long)j["bytes"].get<uint64_t>(), j["version"].get<std::string>().c_str());
   std::printf("  %u vertices, %u frames at %.3g fps, units \"%s\"\n", j["vertices"].get<uint32_t>(),
               j["frames"].get<uint32_t>(), j["frame_rate"].get<double>(), printable(j["units"].get<std::string>()).c_str());
-  std::printf("  tolerance %.3g of L = %.6g; %.3f bits per vertex per frame\n", j["tolerance"].get<double>(),
-              j["rest_diagonal"].get<double>(), j["bpvf"].get<double>());
+  std::printf("  tolerance %.3g of L = %.6g; %.3f bits per vertex per frame; %s in-betweens\n",
+              j["tolerance"].get<double>(), j["rest_diagonal"].get<double>(), j["bpvf"].get<double>(),
+              j["inbetween"].get<std::string>().c_str());
   std::printf("  motion %llu bytes, connectivity %llu bytes (%llu faces, %s layout, %.3f bytes/triangle)\n",
               (unsigned long long)j["motion_bytes"].get<uint64_t>(),
               (unsigned long long)j["connectivity_bytes"].get<uint64_t>(),

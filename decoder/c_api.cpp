@@ -116,6 +116,16 @@ double dcurve_tolerance(const dcurve_decoder* d) { return d ? d->d->tolerance() 
 double dcurve_rest_diagonal(const dcurve_decoder* d) { return d ? d->d->rest_diagonal() : 0.0; }
 uint32_t dcurve_chunk_frames(const dcurve_decoder* d) { return d ? d->d->chunk_frames() : 0; }
 size_t dcurve_memory_bytes(const dcurve_decoder* d) { return d ? d->d->memory_bytes() : 0; }
+int dcurve_interpolation(const dcurve_decoder* d) { return d ? int(d->d->interpolation()) : DCURVE_INTERPOLATION_LINEAR; }
+
+static bool known_interpolation(int rule) {
+  return rule >= DCURVE_INTERPOLATION_LINEAR && rule <= DCURVE_INTERPOLATION_HERMITE4;
+}
+int dcurve_set_interpolation(dcurve_decoder* d, int rule) {
+  if (!d || !known_interpolation(rule)) return DCURVE_ERROR_INVALID_ARGUMENT;
+  d->d->set_interpolation(dcurve::Interpolation(rule));
+  return DCURVE_OK;
+}
 
 int dcurve_evaluate(const dcurve_decoder* d, double t, float* xyz) {
   return evaluate_with(d ? d->d.get() : nullptr, t, false, xyz, nullptr, 0);
@@ -147,4 +157,9 @@ int dcurve_cursor_evaluate_frame(dcurve_cursor* c, uint32_t f, float* xyz, char*
   return evaluate_with(c ? c->c.get() : nullptr, double(f), true, xyz, error, error_size);
 }
 size_t dcurve_cursor_memory_bytes(const dcurve_cursor* c) { return c ? c->c->memory_bytes() : 0; }
+int dcurve_cursor_set_interpolation(dcurve_cursor* c, int rule) {
+  if (!c || !known_interpolation(rule)) return DCURVE_ERROR_INVALID_ARGUMENT;
+  c->c->set_interpolation(dcurve::Interpolation(rule));
+  return DCURVE_OK;
+}
 }

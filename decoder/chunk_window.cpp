@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include "codec/common/crc32.h"
 #include "codec/common/residual_walk.h"
 #include "codec/decompress/residual_decoder.h"
@@ -21,11 +23,13 @@ size_t SharedState::memory_bytes() const {
   return bytes + predictor.memory_bytes() + (chunks ? chunks->memory_bytes() : 0);
 }
 
-ChunkWindow::ChunkWindow(const SharedState& shared) : shared_(shared) {}
+ChunkWindow::ChunkWindow(const SharedState& shared) : shared_(shared), rule_(shared.model.meta.inbetween) {}
 
 size_t ChunkWindow::memory_bytes() const {
+  size_t stencil = 0;
+  for (const StencilSlot& slot : stencil_) stencil += slot.values.capacity();
   return sizeof(*this) + workspace_.bytes() + read_buffer_.capacity() +
-         (values_.capacity() + kept_.capacity()) * sizeof(int32_t) +
+         (values_.capacity() + kept_.capacity() + stencil) * sizeof(int32_t) +
          scratch_.capacity() * sizeof(float) + prediction_scratch_.bytes();
 }
 
@@ -64,6 +68,45 @@ const int32_t* ChunkWindow::frame_values(uint32_t f, Error* error) {
   return values_.data() + size_t(f - c * K) * shared_.model.meta.vertex_count * 3;
 }
 
+const int32_t* ChunkWindow::stencil_frame(uint32_t f, uint32_t lo, uint32_t hi, Error* error) {
+  for (const StencilSlot& slot : stencil_)
+    if (slot.frame == f) return slot.values.data();
+  StencilSlot* free_slot = stencil_;
+  for (StencilSlot& slot : stencil_)
+    if (slot.frame == UINT32_MAX || slot.frame < lo || slot.frame > hi) {
+      free_slot = &slot;
+      break;
+    }
+  const int32_t* values = frame_values(f, error);
+  if (!values) return nullptr;
+  free_slot->frame = UINT32_MAX;  // until the copy is complete
+  free_slot->values.assign(values, values + size_t(shared_.model.meta.vertex_count) * 3);
+  free_slot->frame = f;
+  return free_slot->values.data();
+}
+
+// Frames i - 2 .. i + 3 of the segment with their weights (codec/common/inbetween.h); the
+// frames may lie in up to four chunks, which are decoded in frame order, so sequential
+// playback still decodes each chunk once.
+bool ChunkWindow::evaluate_cubic(const FrameEvaluator::Place& place, float* out, Error* error) {
+  const FrameEvaluator& evaluator = shared_.predictor.evaluator();
+  const uint32_t first = evaluator.span_first(place), last = evaluator.span_last(place);
+  double weight[kInbetweenStencil];
+  inbetween_weights(rule_, first, last, place.i, double(place.w), weight);
+  const int base = int(place.i) + kInbetweenStencilFirst;
+  const uint32_t lo = uint32_t(std::max(base, int(first)));
+  const uint32_t hi = std::min(uint32_t(base + kInbetweenStencil - 1), last);
+  const int32_t* frames[kInbetweenStencil] = {};
+  for (uint32_t f = lo; f <= hi; ++f) {
+    if (weight[f - base] == 0.0) continue;
+    frames[f - base] = stencil_frame(f, lo, hi, error);
+    if (!frames[f - base]) return false;
+  }
+  scratch_.resize(size_t(shared_.model.meta.vertex_count) * 3);
+  evaluator.evaluate_weighted(place, shared_.model.residual, frames, weight, scratch_.data(), out);
+  return true;
+}
+
 bool ChunkWindow::evaluate(double x, float* out, Error* error) {
   const FrameEvaluator& evaluator = shared_.predictor.evaluator();
   const FrameEvaluator::Place place = evaluator.locate(x);
@@ -71,6 +114,7 @@ bool ChunkWindow::evaluate(double x, float* out, Error* error) {
     evaluator.model_at(place, out);
     return true;
   }
+  if (rule_ != Inbetween::Linear && place.w != 0.f) return evaluate_cubic(place, out, error);
   const size_t n = size_t(shared_.model.meta.vertex_count) * 3;
   const int32_t* frame = frame_values(place.i, error);
   if (!frame) return false;

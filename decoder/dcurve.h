@@ -10,7 +10,8 @@
  * belongs to one thread at a time. dcurve_evaluate* on the decoder itself lock an internal
  * cursor (safe from any thread, one call at a time); give each playing thread a cursor.
  * Memory: the decoder keeps the compressed chunks (open_memory) or reads them from the
- * file on demand (open_file); each cursor holds one decoded chunk and the frame before it. */
+ * file on demand (open_file); each cursor holds one decoded chunk and the frame before it,
+ * and under a cubic in-between rule copies of up to six frames. */
 #ifndef DCURVE_H
 #define DCURVE_H
 #include <stddef.h>
@@ -30,6 +31,11 @@
 #define DCURVE_ERROR_CORRUPT_CHUNK 4    /* a chunk fails its checksum or does not decode */
 #define DCURVE_ERROR_OUT_OF_MEMORY 5
 #define DCURVE_ERROR_INTERNAL 6
+
+/* In-between rules (format 3.2): how evaluation fills the time between stored frames. */
+#define DCURVE_INTERPOLATION_LINEAR 0
+#define DCURVE_INTERPOLATION_CATMULL_ROM 1
+#define DCURVE_INTERPOLATION_HERMITE4 2
 
 #ifdef __cplusplus
 extern "C" {
@@ -58,6 +64,11 @@ double dcurve_frame_rate(const dcurve_decoder* decoder);    /* frames per second
 double dcurve_tolerance(const dcurve_decoder* decoder);     /* max error, fraction of L */
 double dcurve_rest_diagonal(const dcurve_decoder* decoder); /* L, model units */
 uint32_t dcurve_chunk_frames(const dcurve_decoder* decoder);
+/* The in-between rule the file records (DCURVE_INTERPOLATION_*; files before 3.2: linear). */
+int dcurve_interpolation(const dcurve_decoder* decoder);
+/* Overrides the rule for the decoder's own evaluate calls; DCURVE_ERROR_INVALID_ARGUMENT for
+ * an unknown rule. */
+int dcurve_set_interpolation(dcurve_decoder* decoder, int rule);
 /* Bytes the decoder holds now (shared tables, kept chunks, its internal cursor). */
 size_t dcurve_memory_bytes(const dcurve_decoder* decoder);
 
@@ -78,6 +89,8 @@ int dcurve_cursor_evaluate(dcurve_cursor* cursor, double t, float* xyz_out, char
 int dcurve_cursor_evaluate_frame(dcurve_cursor* cursor, uint32_t frame, float* xyz_out, char* error,
                                  size_t error_size);
 size_t dcurve_cursor_memory_bytes(const dcurve_cursor* cursor);
+/* Overrides the in-between rule of this cursor (it starts with the file's). */
+int dcurve_cursor_set_interpolation(dcurve_cursor* cursor, int rule);
 
 #ifdef __cplusplus
 }

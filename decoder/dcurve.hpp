@@ -4,7 +4,9 @@
 // Memory: an open Decoder holds the file's shared sections (faces, curves, models), the
 // chunk index and either the compressed chunks (open_memory) or nothing of them
 // (open_file: chunks are read from the file when a frame needs them). Decoded frames live
-// in a Cursor: one chunk and the frame before it, so memory does not grow with the clip.
+// in a Cursor: one chunk and the frame before it (and, under a cubic in-between rule,
+// copies of the up to six frames around the time evaluated), so memory does not grow with
+// the clip.
 //
 // Thread safety: a Decoder is immutable after opening; any number of threads may share
 // it. A Cursor belongs to one thread at a time (make one per thread). The Decoder's own
@@ -37,6 +39,16 @@ struct Error {
   std::string message;
 };
 
+// How evaluate fills the time between two stored frames (format_spec/dcrv.md section 13):
+// linear blending, or a cubic in time through the neighbouring frames (no bytes in the
+// file). A file records the rule its encoder found best (format 3.2; older files: Linear);
+// a caller may override it. Stored frames evaluate the same under every rule.
+enum class Interpolation : int {
+  Linear = DCURVE_INTERPOLATION_LINEAR,
+  CatmullRom = DCURVE_INTERPOLATION_CATMULL_ROM,
+  Hermite4 = DCURVE_INTERPOLATION_HERMITE4,
+};
+
 class Cursor;
 
 class Decoder {
@@ -60,6 +72,11 @@ class Decoder {
   double rest_diagonal() const;          // L, model units
   uint32_t chunk_frames() const;         // frames per chunk (0 when the file has no residual layer)
   uint32_t chunk_count() const;
+  Interpolation interpolation() const;   // the rule the file records
+
+  // The rule the Decoder's own evaluate uses from now on (the file's until set); cursors
+  // made later start with the file's rule. Thread-safe like evaluate.
+  void set_interpolation(Interpolation rule);
 
   // Writes vertex_count * 3 floats (x, y, z per vertex, input vertex order) for time t in
   // [0, 1] (clamped; NaN reads as 0). At t = f / (frame_count - 1) the result is input frame
@@ -94,6 +111,8 @@ class Cursor {
   ~Cursor();
   bool evaluate(double t, float* xyz_out, Error* error = nullptr);
   bool evaluate_frame(uint32_t f, float* xyz_out, Error* error = nullptr);
+  // The rule this cursor's evaluate uses from now on (the file's until set).
+  void set_interpolation(Interpolation rule);
   // Bytes the cursor holds: its window of decoded chunks and decoding buffers.
   size_t memory_bytes() const;
 

@@ -19,6 +19,8 @@ struct Decoder::Impl {
   // The window behind Decoder::evaluate: one call at a time.
   mutable std::mutex mutex;
   mutable std::unique_ptr<ChunkWindow> window;
+  bool rule_set = false;  // the internal window uses `rule`, not the file's
+  Inbetween rule = Inbetween::Linear;
 };
 
 struct Cursor::State {
@@ -149,8 +151,24 @@ double Decoder::tolerance() const { return impl_->shared.model.meta.tolerance; }
 double Decoder::rest_diagonal() const { return impl_->shared.model.meta.diag; }
 uint32_t Decoder::chunk_frames() const { return impl_->shared.index.chunk_frames; }
 uint32_t Decoder::chunk_count() const { return uint32_t(impl_->shared.index.chunks.size()); }
+Interpolation Decoder::interpolation() const { return Interpolation(int(impl_->shared.model.meta.inbetween)); }
+
+void Decoder::set_interpolation(Interpolation rule) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->rule = Inbetween(uint8_t(rule));
+  impl_->rule_set = true;
+  if (impl_->window) impl_->window->set_inbetween(impl_->rule);
+}
 
 namespace {
+ChunkWindow& internal_window(Decoder::Impl& impl) {
+  if (!impl.window) {
+    impl.window = std::make_unique<ChunkWindow>(impl.shared);
+    if (impl.rule_set) impl.window->set_inbetween(impl.rule);
+  }
+  return *impl.window;
+}
+
 // Frame coordinate of time t; clamping happens in frame coordinates (NaN maps to frame 0).
 double frame_coordinate(double t, uint32_t frame_count) { return t * double(frame_count - 1); }
 
@@ -166,14 +184,12 @@ bool evaluate_guarded(ChunkWindow& window, double x, float* out, Error* error) {
 
 bool Decoder::evaluate(double t, float* xyz, Error* error) const {
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  if (!impl_->window) impl_->window = std::make_unique<ChunkWindow>(impl_->shared);
-  return evaluate_guarded(*impl_->window, frame_coordinate(t, frame_count()), xyz, error);
+  return evaluate_guarded(internal_window(*impl_), frame_coordinate(t, frame_count()), xyz, error);
 }
 
 bool Decoder::evaluate_frame(uint32_t f, float* xyz, Error* error) const {
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  if (!impl_->window) impl_->window = std::make_unique<ChunkWindow>(impl_->shared);
-  return evaluate_guarded(*impl_->window, double(std::min(f, frame_count() - 1)), xyz, error);
+  return evaluate_guarded(internal_window(*impl_), double(std::min(f, frame_count() - 1)), xyz, error);
 }
 
 std::unique_ptr<Cursor> Decoder::make_cursor() const {
@@ -222,6 +238,8 @@ bool Cursor::evaluate_frame(uint32_t f, float* xyz, Error* error) {
   const uint32_t F = state_->window.frame_count();
   return evaluate_guarded(state_->window, double(std::min(f, F - 1)), xyz, error);
 }
+
+void Cursor::set_interpolation(Interpolation rule) { state_->window.set_inbetween(Inbetween(uint8_t(rule))); }
 
 size_t Cursor::memory_bytes() const { return sizeof(*this) + sizeof(State) + state_->window.memory_bytes(); }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "chunk_source.h"
+#include "codec/common/inbetween.h"
 #include "codec/common/model.h"
 #include "codec/common/predictors.h"
 #include "codec/common/residual.h"
@@ -29,10 +30,13 @@ struct SharedState {
 };
 
 // One decoded chunk and the frame before it (for the blend across a chunk boundary), and
-// the buffers decoding reuses: memory for K + 1 frames, whatever the clip's length.
+// the buffers decoding reuses: memory for K + 1 frames, whatever the clip's length; with a
+// cubic in-between rule also copies of the up to six frames around the one evaluated.
 class ChunkWindow {
  public:
   explicit ChunkWindow(const SharedState& shared);
+  // The in-between rule evaluate uses: the file's (META) until set.
+  void set_inbetween(Inbetween rule) { rule_ = uint8_t(rule) < kInbetweenCount ? rule : Inbetween::Linear; }
   // Positions at frame coordinate x into out (vertex_count * 3 floats).
   bool evaluate(double x, float* out, Error* error);
   size_t memory_bytes() const;
@@ -44,12 +48,22 @@ class ChunkWindow {
   // f is in the chunk held.
   const int32_t* frame_values(uint32_t f, Error* error);
   bool decode_chunk(uint32_t c, Error* error);
+  // Frame f's grid values copied into a stencil slot, so that the frames of one cubic
+  // in-between stay valid together; reuses a slot whose frame is outside [lo, hi].
+  const int32_t* stencil_frame(uint32_t f, uint32_t lo, uint32_t hi, Error* error);
+  bool evaluate_cubic(const FrameEvaluator::Place& place, float* out, Error* error);
 
   const SharedState& shared_;
   uint32_t chunk_ = UINT32_MAX;  // the chunk whose frames `values_` holds
   std::vector<int32_t> values_;  // frame-major
   uint32_t kept_frame_ = UINT32_MAX;  // the frame `kept_` holds
   std::vector<int32_t> kept_;
+  Inbetween rule_;
+  struct StencilSlot {
+    uint32_t frame = UINT32_MAX;
+    std::vector<int32_t> values;
+  };
+  StencilSlot stencil_[kInbetweenStencil];
   ResidualWorkspace workspace_;
   std::vector<uint8_t> read_buffer_;
   std::vector<float> scratch_;

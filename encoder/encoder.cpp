@@ -19,6 +19,7 @@
 #include "encoder/curves/extract.h"
 #include "encoder/curves/report.h"
 #include "encoder/rate/block_flags.h"
+#include "encoder/rate/inbetween_choice.h"
 #include "encoder/rate/chunk_choice.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/low_rank_choice.h"
@@ -313,6 +314,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   }
   // The search measured without block flags; the chosen layer gets them where smaller.
   if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error)) return false;
+  if (!choose_inbetween(&m, anim.frames, opt.inbetween, error)) return false;
   *out = write_container(m, wo);
 
   if (!measure_decoded(*out, anim, &rep.error, error)) return false;
@@ -326,6 +328,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   rep.connectivity_bytes = connectivity_bytes(sections);
   rep.low_rank_components = m.low_rank.components;
   rep.chunk_frames = std::min(m.residual.chunk_frames, m.meta.frame_count);
+  rep.inbetween = m.meta.inbetween;
   rep.grid_refinement = grid_refinement(m.residual.step, opt.tolerance * m.meta.diag);
   for (const SectionInfo& s : sections) {
     if (s.tag == "LRNK") rep.low_rank_bytes = s.stored_bytes + s.header_bytes;

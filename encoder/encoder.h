@@ -73,6 +73,9 @@ struct EncodeOptions {
   // Frames per chunk of the residual layer (a decoder decodes one chunk to reach any of its
   // frames, and holds two decoded chunks): 0 chosen by the encoder, else in [1, 4096].
   uint32_t chunk_frames = 0;
+  // In-between rule recorded in the file (codec/common/model.h Inbetween): -1 the one that
+  // best predicts held-out input frames (encoder/rate/inbetween_choice.h), else that rule.
+  int inbetween = -1;
   int threads = 0;            // 0: all hardware threads; output bytes never depend on it
   std::function<void(double)> progress;  // called with the fraction done in [0, 1]; may be empty
 };
@@ -94,6 +97,7 @@ struct EncodeReport {
   uint32_t motions_kept = 0;        // of them, the non-Zero motions in the file
   double grid_refinement = 0;       // the residual grid: how many times finer than the coarsest safe one
   uint32_t chunk_frames = 0;        // frames per chunk of the residual layer
+  Inbetween inbetween = Inbetween::Linear;  // the in-between rule the file records
 };
 
 // Encodes `anim` into `out`. The returned error stats come from decoding `out` with the

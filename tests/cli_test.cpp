@@ -36,6 +36,24 @@ TEST(Cli, BadUsageExitsTwo) {
   EXPECT_EQ(run_cli("decode a.dcrv -o d --frames 3 --t 0.5").exit_code, 2);  // exclusive options
 }
 
+// `dcurve decode --interp`: the file's rule by default, another on request; an unknown rule
+// is a usage error.
+TEST(Cli, DecodeInterpOverridesTheFilesRule) {
+  TempDir dir;
+  const std::string in = std::string(DCURVE_SOURCE_DIR) + "/format_spec/test_vectors/hermite4_chunked.dcrv";
+  auto decoded = [&](const std::string& interp, const std::string& name) {
+    EXPECT_EQ(run_cli("decode " + in + " -o " + dir / name + " --t 0.3" + interp).exit_code, 0);
+    std::ifstream f(dir / name);
+    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  };
+  const std::string file = decoded("", "file.obj"), hermite = decoded(" --interp hermite4", "h.obj"),
+                    linear = decoded(" --interp linear", "l.obj");
+  EXPECT_FALSE(file.empty());
+  EXPECT_EQ(file, hermite);
+  EXPECT_NE(file, linear);
+  EXPECT_EQ(run_cli("decode " + in + " -o " + dir / "x.obj --t 0.3 --interp cubic9").exit_code, 2);
+}
+
 TEST(Cli, MissingInputExitsOneAndNamesTheFile) {
   TempDir dir;
   CommandResult r = run_cli("encode /nonexistent/frames -o " + dir / "out.dcrv");
@@ -134,8 +152,11 @@ TEST(Cli, InfoDescribesTestVectorsAndRefusesDamage) {
   CommandResult r = run_cli("info --json " + vectors + "pde_segments.dcrv");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* key : {"\"vertices\":6", "\"frames\":9", "\"faces\":4", "\"pde8\":12", "\"pde32\":3",
-                          "\"version\":\"3.1\"", "\"mode\":\"displacement\""})
+                          "\"version\":\"3.2\"", "\"mode\":\"displacement\""})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " in " << r.output;
+  EXPECT_NE(r.output.find("\"inbetween\":\"linear\""), std::string::npos) << r.output;
+  r = run_cli("info --json " + vectors + "hermite4_chunked.dcrv");
+  EXPECT_NE(r.output.find("\"inbetween\":\"hermite4\""), std::string::npos) << r.output;
   r = run_cli("info --json " + vectors + "sheet_traversal_faces.dcrv");
   EXPECT_NE(r.output.find("\"face_layout\":\"traversal\""), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\"faces\":72"), std::string::npos) << r.output;

@@ -136,6 +136,16 @@ std::vector<Vector> recipes() {
   low_rank_sheet.faces = traversal_order(low_rank_sheet.faces);
   v.push_back({"low_rank", with_low_rank(low_rank_sheet), {}});
   v.push_back({"low_rank_posed", with_low_rank(low_rank_sheet, true), {}});
+
+  // In-between rules (format 3.2): Catmull-Rom through 7 frames without segments, and
+  // Hermite4 on the chunked recipe, whose stencils reach across segment ends (one-sided
+  // tangents) and chunk boundaries (frames of the neighbouring chunks).
+  Model catmull_rom = small_model(7);
+  catmull_rom.meta.inbetween = Inbetween::CatmullRom;
+  v.push_back({"catmull_rom", catmull_rom, {}});
+  Model hermite4 = chunked;
+  hermite4.meta.inbetween = Inbetween::Hermite4;
+  v.push_back({"hermite4_chunked", hermite4, {}});
   // Every payload as format 3.1 writes it at its smallest: with block flags (version 4).
   for (Vector& vector : v) {
     std::string err;
@@ -256,18 +266,27 @@ TEST(TestVectors, DecoderReproducesTheExpectedPositions) {
   for (const Vector& v : recipes()) expect_decodes_as_expected(dir() + v.name + ".dcrv", v.name);
 }
 
-// test_vectors/3.0 keeps the files as format 3.0 wrote them (residual payloads without block
-// flags): a 3.1 decoder reads them to the same positions.
-TEST(TestVectors, Format30FilesStillDecode) {
+// test_vectors/3.0 and 3.1 keep the files of the recipes that existed then as those formats
+// wrote them (3.0: residual payloads without block flags; both: no in-between field, so
+// linear in-betweens): a 3.2 decoder reads them to the same positions.
+void expect_older_files_decode(const std::string& version, uint16_t minor) {
   for (const Vector& v : recipes()) {
-    const std::string path = dir() + "3.0/" + v.name + ".dcrv";
+    if (v.model.meta.inbetween != Inbetween::Linear) continue;  // recipes of format 3.2
+    const std::string path = dir() + version + "/" + v.name + ".dcrv";
     const std::vector<uint8_t> bytes = read_bytes(path);
-    ASSERT_GE(bytes.size(), 8u) << "missing 3.0 test vector " << path;
+    ASSERT_GE(bytes.size(), 8u) << "missing test vector " << path;
     EXPECT_EQ(bytes[4] | bytes[5] << 8, 3);  // version_major
-    EXPECT_EQ(bytes[6] | bytes[7] << 8, 0);  // version_minor
+    EXPECT_EQ(bytes[6] | bytes[7] << 8, minor);
+    std::string err;
+    auto d = Decoder::open_file(path, &err);
+    ASSERT_TRUE(d) << path << ": " << err;
+    EXPECT_EQ(d->interpolation(), Interpolation::Linear) << path;
     expect_decodes_as_expected(path, v.name);
   }
 }
+
+TEST(TestVectors, Format30FilesStillDecode) { expect_older_files_decode("3.0", 0); }
+TEST(TestVectors, Format31FilesStillDecode) { expect_older_files_decode("3.1", 1); }
 
 }  // namespace
 }  // namespace dcurve

@@ -155,25 +155,42 @@ inline const Segment& segment_at(const Model& m, double x) {
   return *seg;
 }
 
-// The reference output for any file the helpers make: linear interpolation of the grid when
-// there are no segments, the model alone when there is no residual layer, else
-// reference_position below.
+// The blend of corrections c(f), f in the segment [a, b], at frame coordinate i + w by an
+// in-between rule (format_spec/dcrv.md section 13), written from the spec's formulas apart
+// from the decoder's weights (codec/common/inbetween.cpp).
+template <class Correction>
+double reference_blend(Inbetween rule, uint32_t a, uint32_t b, uint32_t i, double w, Correction c) {
+  if (w == 0) return c(i);
+  if (rule == Inbetween::Linear) return (1 - w) * c(i) + w * c(i + 1);
+  auto tangent = [&](uint32_t f) {
+    if (b - a == 1) return c(b) - c(a);
+    if (f == a) return (-3 * c(a) + 4 * c(a + 1) - c(a + 2)) / 2;
+    if (f == b) return (3 * c(b) - 4 * c(b - 1) + c(b - 2)) / 2;
+    if (rule == Inbetween::Hermite4 && f >= a + 2 && f + 2 <= b)
+      return (c(f - 2) - 8 * c(f - 1) + 8 * c(f + 1) - c(f + 2)) / 12;
+    return (c(f + 1) - c(f - 1)) / 2;
+  };
+  const double w2 = w * w, w3 = w2 * w;
+  return (2 * w3 - 3 * w2 + 1) * c(i) + (w3 - 2 * w2 + w) * tangent(i) + (-2 * w3 + 3 * w2) * c(i + 1) +
+         (w3 - w2) * tangent(i + 1);
+}
+
+// The reference output for any file the helpers make: the model alone when there is no
+// residual layer, else reference_position below.
 inline double reference_position(const Model& m, double x, uint32_t v, int a);
 inline double expected_position(const Model& m, double x, uint32_t v, int a) {
-  if (m.segments.empty()) {
-    const uint32_t F = m.meta.frame_count;
-    const uint32_t i = F > 1 ? std::min(uint32_t(x), F - 2) : 0;
-    const double w = F > 1 ? x - i : 0.0;
-    return (1 - w) * grid_position(m, i, v, a) + (w != 0 ? w * grid_position(m, i + 1, v, a) : 0.0);
-  }
-  if (m.residual.step == 0) return segment_model(m, segment_at(m, x), x, v, a);
+  if (!m.segments.empty() && m.residual.step == 0) return segment_model(m, segment_at(m, x), x, v, a);
   return reference_position(m, x, v, a);
 }
 
 // The whole reference output at frame coordinate x, written from the spec's formulas:
-// M_s(x) + lerp(X_i - M_s(i), X_{i+1} - M_s(i+1), w), s the segment x falls in (later wins).
+// M_s(x) + blend of D(f) = X_f - M_s(f) around x by the file's rule, s the segment x falls
+// in (later wins); without segments one segment [0, F - 1] and no model.
 inline double reference_position(const Model& m, double x, uint32_t v, int a) {
-  const Segment& seg = segment_at(m, x);
+  Segment whole;
+  whole.last_frame = m.meta.frame_count - 1;
+  const bool none = m.segments.empty();
+  const Segment& seg = none ? whole : segment_at(m, x);
   const uint32_t len = seg.last_frame - seg.first_frame;
   uint32_t i = seg.first_frame;
   double w = 0;
@@ -181,8 +198,9 @@ inline double reference_position(const Model& m, double x, uint32_t v, int a) {
     i = std::min(uint32_t(x), seg.last_frame - 1);
     w = x - i;
   }
-  auto correction = [&](uint32_t f) { return grid_position(m, f, v, a) - segment_model(m, seg, f, v, a); };
-  return segment_model(m, seg, x, v, a) + (1 - w) * correction(i) + (w != 0 ? w * correction(i + 1) : 0.0);
+  auto model = [&](double at) { return none ? 0.0 : segment_model(m, seg, at, v, a); };
+  auto correction = [&](uint32_t f) { return grid_position(m, f, v, a) - model(f); };
+  return model(x) + reference_blend(m.meta.inbetween, seg.first_frame, seg.last_frame, i, w, correction);
 }
 
 }  // namespace dcurve::testing

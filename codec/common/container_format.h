@@ -13,10 +13,14 @@ namespace dcurve {
 // Version written by write_container. Readers accept any minor of their major: a newer minor
 // adds optional sections, hint flags, or required feature flags an older reader refuses.
 constexpr uint16_t kFormatVersionMajor = 3;
-constexpr uint16_t kFormatVersionMinor = 1;
+constexpr uint16_t kFormatVersionMinor = 2;
 // Required feature (file_flags bit 0, since 3.1): residual payloads may be of version 4 (zero
 // block flags), which a 3.0 reader cannot decode. The writer always sets it.
 constexpr uint32_t kFileFlagZeroBlocks = 1u;
+// Required feature (file_flags bit 1, since 3.2): META ends with the in-between rule byte
+// (Metadata::inbetween). Set exactly when the rule is not Linear, so a 3.1 reader refuses
+// only files it would evaluate differently between frames.
+constexpr uint32_t kFileFlagInbetween = 2u;
 
 // The fixed 28-byte file header.
 struct ContainerHeader {

@@ -6,6 +6,7 @@
 
 #include "codec/common/basis.h"
 #include "codec/common/error.h"
+#include "codec/common/inbetween.h"
 #include "codec/common/residual.h"
 
 namespace dcurve {
@@ -206,30 +207,46 @@ void FrameEvaluator::model_at(const Place& place, float* out) const {
   if (span.motions_end > span.motions_begin) apply_model(span, place.tau, 1.f, out);
 }
 
+void FrameEvaluator::corrections(const Span& span, const ResidualLayer& grid, const int32_t* q, uint32_t f,
+                                 float* d) const {
+  const size_t V = vertex_count_;
+  for (size_t v = 0; v < V; ++v)
+    for (int a = 0; a < 3; ++a) d[v * 3 + size_t(a)] = grid_to_model(grid, a, q[v * 3 + size_t(a)]);
+  if (span.motions_end > span.motions_begin) apply_model(span, tau_of(span, double(f)), -1.f, d);
+}
+
 void FrameEvaluator::evaluate(const Place& place, const ResidualLayer& grid, const int32_t* frame, const int32_t* next,
                               float* scratch, float* out) const {
   const size_t V = vertex_count_;
   const Span& span = spans_[place.span];
   const bool blend = place.w != 0.f && next;
   const bool model = span.motions_end > span.motions_begin;
-  // D(f) = X_f - M(f) in binary32: the corrections the model's output is added to.
-  auto corrections = [&](const int32_t* q, uint32_t f, float* d) {
-    for (size_t v = 0; v < V; ++v)
-      for (int a = 0; a < 3; ++a) d[v * 3 + size_t(a)] = grid_to_model(grid, a, q[v * 3 + size_t(a)]);
-    if (model) apply_model(span, tau_of(span, double(f)), -1.f, d);
-  };
   if (!model && !blend) {
     for (size_t v = 0; v < V; ++v)
       for (int a = 0; a < 3; ++a) out[v * 3 + size_t(a)] = grid_to_model(grid, a, frame[v * 3 + size_t(a)]);
     return;
   }
-  corrections(frame, place.i, out);
+  corrections(span, grid, frame, place.i, out);
   if (blend) {
-    corrections(next, place.i + 1, scratch);
+    corrections(span, grid, next, place.i + 1, scratch);
     const float w = place.w;
     for (size_t k = 0; k < V * 3; ++k) out[k] = out[k] + w * (scratch[k] - out[k]);
   }
   if (model) apply_model(span, place.tau, 1.f, out);
+}
+
+void FrameEvaluator::evaluate_weighted(const Place& place, const ResidualLayer& grid, const int32_t* const* frames,
+                                       const double* weight, float* scratch, float* out) const {
+  const size_t n = size_t(vertex_count_) * 3;
+  const Span& span = spans_[place.span];
+  std::fill_n(out, n, 0.f);
+  for (int k = 0; k < kInbetweenStencil; ++k) {
+    if (weight[k] == 0.0) continue;
+    corrections(span, grid, frames[k], uint32_t(int(place.i) + kInbetweenStencilFirst + k), scratch);
+    const float c = float(weight[k]);
+    for (size_t j = 0; j < n; ++j) out[j] += c * scratch[j];
+  }
+  if (span.motions_end > span.motions_begin) apply_model(span, place.tau, 1.f, out);
 }
 
 }  // namespace dcurve

@@ -42,6 +42,15 @@ class FrameEvaluator {
   void evaluate(const Place& place, const ResidualLayer& grid, const int32_t* frame, const int32_t* next,
                 float* scratch, float* out) const;
 
+  // Positions at `place` by a cubic in-between rule: the model plus the weighted sum of the
+  // corrections of frames i - 2 .. i + 3 (frames[k] and weight[k], codec/common/inbetween.h;
+  // a frame of weight 0 may be null). scratch as for evaluate.
+  void evaluate_weighted(const Place& place, const ResidualLayer& grid, const int32_t* const* frames,
+                         const double* weight, float* scratch, float* out) const;
+  // The frames [first, last] of the segment `place` falls in.
+  uint32_t span_first(const Place& place) const { return spans_[place.span].first; }
+  uint32_t span_last(const Place& place) const { return spans_[place.span].last; }
+
   size_t memory_bytes() const {
     return weights_.capacity() * sizeof(float) + motions_.capacity() * sizeof(CurveModel) +
            spans_.capacity() * sizeof(Span);
@@ -72,6 +81,8 @@ class FrameEvaluator {
   // out += sign * model(span, tau), tau in [0, 1]. The one place the model is evaluated.
   void apply_model(const Span& span, double tau, float sign, float* out) const;
   double tau_of(const Span& span, double x) const;
+  // D(f) = X_f - M(f) in binary32 into d: the correction the model's output is added to.
+  void corrections(const Span& span, const ResidualLayer& grid, const int32_t* q, uint32_t f, float* d) const;
 
   uint32_t vertex_count_ = 0;
   uint32_t frame_count_ = 0;

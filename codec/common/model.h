@@ -15,6 +15,15 @@ enum class Basis : uint8_t {
   Pde32 = 2,  // 2024 paper: 4 time x 8 space functions
 };
 
+// How the decoder blends the stored frames' corrections between two frames
+// (format_spec/dcrv.md section 13); the encoder records its choice in META (format 3.2).
+enum class Inbetween : uint8_t {
+  Linear = 0,      // linear blend of frames i and i + 1 (every file before 3.2)
+  CatmullRom = 1,  // cubic Hermite, tangents (p[f+1] - p[f-1]) / 2
+  Hermite4 = 2,    // cubic Hermite, tangents by fourth-order central differences
+};
+constexpr uint8_t kInbetweenCount = 3;
+
 // What the model predicts.
 enum class FitMode : uint8_t {
   Absolute = 0,      // positions themselves (the papers' mode)
@@ -28,6 +37,7 @@ struct Metadata {
   double tolerance = 1e-3;    // max error the encoder promised, as a fraction of `diag`
   double diag = 1.0;          // L: bounding-box diagonal of the rest pose (frame 0), model units
   std::string units;          // free text, e.g. "m"; may be empty
+  Inbetween inbetween = Inbetween::Linear;  // the encoder's in-between rule
 };
 
 // A partition of all vertices into ordered curves.

@@ -22,6 +22,7 @@ bool validate_model(const Model& m, std::string* error) {
   if (!finite_positive(m.meta.diag)) return fail(error, "rest-pose diagonal is not a positive number");
   if (!finite_positive(m.meta.tolerance)) return fail(error, "tolerance is not a positive number");
   if (!std::isfinite(m.meta.frame_rate) || m.meta.frame_rate < 0) return fail(error, "frame rate is invalid");
+  if (uint8_t(m.meta.inbetween) >= kInbetweenCount) return fail(error, "unknown in-between rule");
   const bool has_residual = m.residual.step != 0.0 || !m.residual.payload.empty();
   if (has_residual) {
     uint64_t values = uint64_t(V) * F * 3;

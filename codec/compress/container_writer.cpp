@@ -75,6 +75,7 @@ std::vector<uint8_t> meta_bytes(const Model& m) {
   w.f64(m.meta.tolerance);
   w.f64(m.meta.diag);
   w.str(m.meta.units);
+  if (m.meta.inbetween != Inbetween::Linear) w.u8(uint8_t(m.meta.inbetween));
   return std::move(w.data());
 }
 
@@ -165,7 +166,7 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   out.bytes(kMagic, 4);
   out.u16(kFormatVersionMajor);
   out.u16(kFormatVersionMinor);
-  out.u32(kFileFlagZeroBlocks);
+  out.u32(kFileFlagZeroBlocks | (model.meta.inbetween != Inbetween::Linear ? kFileFlagInbetween : 0));
   out.u32(uint32_t(sections.size()));
   out.u64(kHeaderBytes + body.size());
   out.u32(crc32c(out.data().data(), kHeaderBytes - 4));

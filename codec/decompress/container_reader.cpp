@@ -25,7 +25,7 @@ constexpr uint16_t kSectionKnownFlags = kSectionRequired | kSectionZstd;
 // File flags: the low 16 bits name features a reader must understand, the high 16 bits are
 // hints a reader may ignore.
 constexpr uint32_t kFileRequiredFlagsMask = 0xffffu;
-constexpr uint32_t kFileKnownRequiredFlags = kFileFlagZeroBlocks;
+constexpr uint32_t kFileKnownRequiredFlags = kFileFlagZeroBlocks | kFileFlagInbetween;
 // Smallest compact section header: tag, flags, a one-byte size, CRC.
 constexpr size_t kCompactSectionHeaderMin = 4 + 1 + 1 + 4;
 // A decompressed section may be at most this many times its stored size (plus a floor):
@@ -43,13 +43,19 @@ std::string tag_name(uint32_t t) {
   return s;
 }
 
-bool parse_meta(ByteReader& r, Model* m) {
+// has_inbetween: file flag bit 1, META's last field is the in-between rule (format 3.2).
+bool parse_meta(ByteReader& r, bool has_inbetween, Model* m) {
   m->meta.vertex_count = r.u32();
   m->meta.frame_count = r.u32();
   m->meta.frame_rate = r.f64();
   m->meta.tolerance = r.f64();
   m->meta.diag = r.f64();
   m->meta.units = r.str(256);
+  if (has_inbetween) {
+    const uint8_t rule = r.u8();
+    if (rule >= kInbetweenCount) return false;
+    m->meta.inbetween = Inbetween(rule);
+  }
   return r.ok;
 }
 
@@ -251,7 +257,7 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
     ByteReader s(raw.data(), raw.size());
     bool ok = false;
     if (tag == kMeta) {
-      ok = parse_meta(s, model);
+      ok = parse_meta(s, (h.flags & kFileFlagInbetween) != 0, model);
       // Before anything sized by V or F is built (one-point curves of a file without CURV);
       // F = 0, rejected later, must not let any V through.
       if (ok && uint64_t(model->meta.vertex_count) * std::max(model->meta.frame_count, 1u) >

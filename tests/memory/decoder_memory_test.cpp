@@ -111,6 +111,10 @@ Playback play(uint32_t frames, const std::string& path) {
     std::vector<float> xyz(size_t(dec->vertex_count()) * 3);
     const size_t output = live_bytes - held;  // the caller's buffer, not the decoder's
     for (uint32_t f = 0; f < dec->frame_count(); ++f) EXPECT_TRUE(cursor->evaluate_frame(f, xyz.data())) << f;
+    // In-betweens by a cubic rule too: the cursor then also keeps up to six stencil frames.
+    cursor->set_interpolation(Interpolation::Hermite4);
+    for (uint32_t f = 0; f + 1 < dec->frame_count(); ++f)
+      EXPECT_TRUE(cursor->evaluate((f + 0.5) / (dec->frame_count() - 1), xyz.data())) << f;
     p.memory_bytes = dec->memory_bytes() + cursor->memory_bytes();
     p.live_bytes = live_bytes - before - output;
     p.peak_bytes = peak_bytes - before - output;
