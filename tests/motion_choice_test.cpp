@@ -217,5 +217,26 @@ TEST(MotionChoice, PdeEncodeIsNeverLargerThanNone) {
   }
 }
 
+// The sheet's even frames 0..18 with every PDE motion kept: the block-flag step once rebuilt
+// the Model prediction from the in-memory coefficients instead of the stored ones, and one
+// grid value rounded otherwise, so the encode failed its own checksum.
+TEST(MotionChoice, KeptMotionsEncodeWhereStoredCoefficientsRoundOtherwise) {
+  const Animation sim = test::simulate_builtin("sheet", 19);
+  Animation anim = sim;
+  anim.frames.clear();
+  for (size_t f = 0; f < sim.frames.size(); f += 2) anim.frames.push_back(sim.frames[f]);
+  EncodeOptions opt;
+  opt.model = ModelChoice::Pde;
+  opt.keep_all_motions = true;
+  opt.low_rank = 0;
+  opt.grid_refinement = 4;
+  std::vector<uint8_t> bytes;
+  EncodeReport rep;
+  std::string err;
+  ASSERT_TRUE(encode_animation(anim, opt, &bytes, &rep, &err)) << err;
+  EXPECT_GT(rep.motions_kept, 0u);
+  EXPECT_LE(rep.error.max_error, opt.tolerance);
+}
+
 }  // namespace
 }  // namespace dcurve
