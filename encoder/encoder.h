@@ -63,7 +63,7 @@ struct EncodeOptions {
   // walk the refinements (about four whole encodes). 2: two grids (3x and 8x) side by side,
   // the smaller file wins. 1: one encode on a grid 6x finer than the coarsest. Eleven inputs
   // at 1e-3 against 3: 2 came within 3.2 % (and 9.6 % smaller on the full rope), 1 within
-  // 10.3 % (encoder/rate/README.md). The low-rank choice runs in full at every level.
+  // 10.3 % (encoder/rate/grid.cpp). The low-rank choice runs in full at every level.
   int effort = kMaxEffort;
   // With a PDE model: keep every fitted motion even where it does not pay for its
   // coefficients (in-betweens then follow the model everywhere; the file may be larger).
