@@ -119,7 +119,7 @@ Action add_encode(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--reorder-faces", o->reorder_faces,
                "Store the triangles in the face coder's traversal order (same triangles, windings and vertex "
-               "ids, 1.5-2x smaller faces); default: the input's face list as given");
+               "ids, 1.5-5x smaller faces); default: the input's face list as given");
   app.add_flag("--no-connectivity", o->no_connectivity, "Leave faces out of the file (the engine has the mesh)");
   app.add_option("--threads", o->threads, "Worker threads, 0 = all cores (output is the same for any count)")
       ->check(CLI::NonNegativeNumber);

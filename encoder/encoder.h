@@ -43,7 +43,7 @@ struct EncodeOptions {
   bool connectivity = true;   // store faces in the file
   // Keep the input's triangle order and corner rotation. Off: triangles are stored in the
   // face coder's traversal order (same triangles, same winding, same vertex ids), which
-  // codes 1.5-2x smaller.
+  // codes 1.5-5x smaller.
   bool exact_face_order = false;
   // Low-rank (PCA) model of the frames for the residual layer's Model predictor (LRNK):
   // -1 automatic (kept only where the file gets smaller), 0 off, 1..64 that many components
