@@ -27,10 +27,10 @@ ChunkWindow::ChunkWindow(const SharedState& shared) : shared_(shared), rule_(sha
 
 size_t ChunkWindow::memory_bytes() const {
   size_t stencil = 0;
-  for (const StencilSlot& slot : stencil_) stencil += slot.values.capacity();
+  for (const StencilSlot& slot : stencil_) stencil += slot.correction.capacity();
   return sizeof(*this) + workspace_.bytes() + read_buffer_.capacity() +
-         (values_.capacity() + kept_.capacity() + stencil) * sizeof(int32_t) +
-         scratch_.capacity() * sizeof(float) + prediction_scratch_.bytes();
+         (values_.capacity() + kept_.capacity()) * sizeof(int32_t) +
+         (scratch_.capacity() + stencil) * sizeof(float) + prediction_scratch_.bytes();
 }
 
 bool ChunkWindow::decode_chunk(uint32_t c, Error* error) {
@@ -68,21 +68,24 @@ const int32_t* ChunkWindow::frame_values(uint32_t f, Error* error) {
   return values_.data() + size_t(f - c * K) * shared_.model.meta.vertex_count * 3;
 }
 
-const int32_t* ChunkWindow::stencil_frame(uint32_t f, uint32_t lo, uint32_t hi, Error* error) {
+const float* ChunkWindow::stencil_correction(const FrameEvaluator::Place& place, uint32_t f, uint32_t lo,
+                                             uint32_t hi, Error* error) {
   for (const StencilSlot& slot : stencil_)
-    if (slot.frame == f) return slot.values.data();
+    if (slot.frame == f && slot.span == place.span) return slot.correction.data();
   StencilSlot* free_slot = stencil_;
   for (StencilSlot& slot : stencil_)
-    if (slot.frame == UINT32_MAX || slot.frame < lo || slot.frame > hi) {
+    if (slot.frame == UINT32_MAX || slot.frame < lo || slot.frame > hi || slot.span != place.span) {
       free_slot = &slot;
       break;
     }
   const int32_t* values = frame_values(f, error);
   if (!values) return nullptr;
-  free_slot->frame = UINT32_MAX;  // until the copy is complete
-  free_slot->values.assign(values, values + size_t(shared_.model.meta.vertex_count) * 3);
+  free_slot->frame = UINT32_MAX;  // until the correction is complete
+  free_slot->correction.resize(size_t(shared_.model.meta.vertex_count) * 3);
+  shared_.predictor.evaluator().frame_correction(place, shared_.model.residual, values, f, free_slot->correction.data());
   free_slot->frame = f;
-  return free_slot->values.data();
+  free_slot->span = place.span;
+  return free_slot->correction.data();
 }
 
 // Frames i - 2 .. i + 3 of the segment with their weights (codec/common/inbetween.h); the
@@ -96,14 +99,13 @@ bool ChunkWindow::evaluate_cubic(const FrameEvaluator::Place& place, float* out,
   const int base = int(place.i) + kInbetweenStencilFirst;
   const uint32_t lo = uint32_t(std::max(base, int(first)));
   const uint32_t hi = std::min(uint32_t(base + kInbetweenStencil - 1), last);
-  const int32_t* frames[kInbetweenStencil] = {};
+  const float* corrections[kInbetweenStencil] = {};
   for (uint32_t f = lo; f <= hi; ++f) {
     if (weight[f - base] == 0.0) continue;
-    frames[f - base] = stencil_frame(f, lo, hi, error);
-    if (!frames[f - base]) return false;
+    corrections[f - base] = stencil_correction(place, f, lo, hi, error);
+    if (!corrections[f - base]) return false;
   }
-  scratch_.resize(size_t(shared_.model.meta.vertex_count) * 3);
-  evaluator.evaluate_weighted(place, shared_.model.residual, frames, weight, scratch_.data(), out);
+  evaluator.evaluate_weighted(place, corrections, weight, out);
   return true;
 }
 

@@ -31,7 +31,7 @@ struct SharedState {
 
 // One decoded chunk and the frame before it (for the blend across a chunk boundary), and
 // the buffers decoding reuses: memory for K + 1 frames, whatever the clip's length; with a
-// cubic in-between rule also copies of the up to six frames around the one evaluated.
+// cubic in-between rule also the corrections of the up to six frames around the one evaluated.
 class ChunkWindow {
  public:
   explicit ChunkWindow(const SharedState& shared);
@@ -48,9 +48,11 @@ class ChunkWindow {
   // f is in the chunk held.
   const int32_t* frame_values(uint32_t f, Error* error);
   bool decode_chunk(uint32_t c, Error* error);
-  // Frame f's grid values copied into a stencil slot, so that the frames of one cubic
-  // in-between stay valid together; reuses a slot whose frame is outside [lo, hi].
-  const int32_t* stencil_frame(uint32_t f, uint32_t lo, uint32_t hi, Error* error);
+  // Frame f's correction in the segment of `place`, kept in a stencil slot: the frames of one
+  // cubic in-between stay valid together, and the in-betweens around f reuse it. Reuses a
+  // slot whose frame is outside [lo, hi] or whose segment is another.
+  const float* stencil_correction(const FrameEvaluator::Place& place, uint32_t f, uint32_t lo, uint32_t hi,
+                                  Error* error);
   bool evaluate_cubic(const FrameEvaluator::Place& place, float* out, Error* error);
 
   const SharedState& shared_;
@@ -61,7 +63,8 @@ class ChunkWindow {
   Inbetween rule_;
   struct StencilSlot {
     uint32_t frame = UINT32_MAX;
-    std::vector<int32_t> values;
+    size_t span = 0;
+    std::vector<float> correction;
   };
   StencilSlot stencil_[kInbetweenStencil];
   ResidualWorkspace workspace_;

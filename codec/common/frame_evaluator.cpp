@@ -235,16 +235,16 @@ void FrameEvaluator::evaluate(const Place& place, const ResidualLayer& grid, con
   if (model) apply_model(span, place.tau, 1.f, out);
 }
 
-void FrameEvaluator::evaluate_weighted(const Place& place, const ResidualLayer& grid, const int32_t* const* frames,
-                                       const double* weight, float* scratch, float* out) const {
+void FrameEvaluator::evaluate_weighted(const Place& place, const float* const* corrections, const double* weight,
+                                       float* out) const {
   const size_t n = size_t(vertex_count_) * 3;
   const Span& span = spans_[place.span];
   std::fill_n(out, n, 0.f);
   for (int k = 0; k < kInbetweenStencil; ++k) {
     if (weight[k] == 0.0) continue;
-    corrections(span, grid, frames[k], uint32_t(int(place.i) + kInbetweenStencilFirst + k), scratch);
     const float c = float(weight[k]);
-    for (size_t j = 0; j < n; ++j) out[j] += c * scratch[j];
+    const float* d = corrections[k];
+    for (size_t j = 0; j < n; ++j) out[j] += c * d[j];
   }
   if (span.motions_end > span.motions_begin) apply_model(span, place.tau, 1.f, out);
 }

@@ -42,11 +42,16 @@ class FrameEvaluator {
   void evaluate(const Place& place, const ResidualLayer& grid, const int32_t* frame, const int32_t* next,
                 float* scratch, float* out) const;
 
+  // Frame f's correction in the segment of `place` (D(f) = X_f - M(f) in binary32, from its
+  // grid values q) into d: what evaluate_weighted sums. It depends on the frame and the
+  // segment only, so a caller may keep it for the in-betweens around f.
+  void frame_correction(const Place& place, const ResidualLayer& grid, const int32_t* q, uint32_t f, float* d) const {
+    corrections(spans_[place.span], grid, q, f, d);
+  }
   // Positions at `place` by a cubic in-between rule: the model plus the weighted sum of the
-  // corrections of frames i - 2 .. i + 3 (frames[k] and weight[k], codec/common/inbetween.h;
-  // a frame of weight 0 may be null). scratch as for evaluate.
-  void evaluate_weighted(const Place& place, const ResidualLayer& grid, const int32_t* const* frames,
-                         const double* weight, float* scratch, float* out) const;
+  // corrections of frames i - 2 .. i + 3 (corrections[k], frame_correction of frame
+  // i - 2 + k, and weight[k], codec/common/inbetween.h; a frame of weight 0 may be null).
+  void evaluate_weighted(const Place& place, const float* const* corrections, const double* weight, float* out) const;
   // The frames [first, last] of the segment `place` falls in.
   uint32_t span_first(const Place& place) const { return spans_[place.span].first; }
   uint32_t span_last(const Place& place) const { return spans_[place.span].last; }
