@@ -151,8 +151,8 @@ Action add_bench(CLI::App& app) {
   app.add_option("--frames", o->max_frames, "Use only the first N frames of each input (0 = all)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--effort", o->effort,
-                 "dcurve's encode effort (as dcurve encode --effort): 3 walks the residual grids by trial encodes, "
-                 "2 tries two side by side, 1 encodes once; lower is faster")
+                 "dcurve's encode effort (as dcurve encode --effort): 2 tries two residual grids side by side, "
+                 "1 encodes once, 3 walks the grids by trial encodes; lower is faster")
       ->check(CLI::Range(kMinEffort, kMaxEffort))
       ->capture_default_str();
   app.add_flag("--json", o->json, "Print one JSON object on stdout instead of the table");

@@ -96,6 +96,16 @@ struct GridStart {
   std::shared_ptr<const Traversal> traversal;
 };
 
+// The residual planner's options at opt's effort. Below the highest, frames are planned in
+// time order only: the hierarchical orders cost a whole plan each and rarely win by more
+// than a hair once the low-rank model predicts (closing notes of issue 36 give the figures).
+ResidualPlanOptions plan_options(const EncodeOptions& opt) {
+  ResidualPlanOptions po;
+  po.threads = opt.threads;
+  if (opt.effort < kMaxEffort) po.gop_sizes = {1};
+  return po;
+}
+
 // The encode without a PDE model: the residual layer alone, with a low-rank model where it
 // pays. `residual_only` (may be null) receives it before the low-rank choice: what a PDE
 // motion competes with inside a file, which cannot also carry a low-rank model. `bytes`
@@ -104,8 +114,7 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
                   Model* residual_only, std::string* error, uint64_t* bytes = nullptr) {
   *m = start.model;
   std::vector<int32_t> q = start.rounded;
-  ResidualPlanOptions po;
-  po.threads = opt.threads;
+  const ResidualPlanOptions po = plan_options(opt);
   ResidualOptions ro;
   ro.weights_source = start.weights;
   ro.traversal = start.traversal.get();
@@ -230,8 +239,7 @@ bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const 
     report->fitted = estimate.motions;
     return true;
   }
-  ResidualPlanOptions po;
-  po.threads = opt.threads;
+  const ResidualPlanOptions po = plan_options(opt);
   MotionChoiceOptions mco;
   mco.keep_all = opt.keep_all_motions;
   return choose_motions(m, plain, anim.frames, start.rounded, start.snap, po, mco, report, error);
@@ -289,7 +297,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     ResidualOptions ro;
     ro.weights_source = start.weights;
     ro.traversal = start.traversal.get();
-    if (!choose_chunk_frames(&m, anim.frames, start.rounded, start.snap, ro, wo, opt.threads, out, error))
+    if (!choose_chunk_frames(&m, anim.frames, start.rounded, start.snap, ro, wo, plan_options(opt), out, error))
       return false;
   } else {
     *out = write_container(m, wo);

@@ -30,8 +30,8 @@ constexpr uint32_t kMaxChunkFrames = 4096;
 constexpr double kMinTolerance = 1e-6;
 double minimum_tolerance(const Animation& anim);
 
-// EncodeOptions::effort's range; the highest is the default.
-constexpr int kMinEffort = 1, kMaxEffort = 3;
+// EncodeOptions::effort's range and default.
+constexpr int kMinEffort = 1, kDefaultEffort = 2, kMaxEffort = 3;
 
 struct EncodeOptions {
   double tolerance = 1e-3;    // max error, fraction of the rest-pose bounding-box diagonal, in (0, 0.5]
@@ -59,12 +59,12 @@ struct EncodeOptions {
   // plain encodes), else the coarsest safe grid made this many times finer, in [1, 16],
   // which skips the trials.
   double grid_refinement = 0;
-  // How hard the encoder searches when grid_refinement is 0, in [1, 3]. 3: the grid trials
-  // walk the refinements (about four whole encodes). 2: two grids (3x and 8x) side by side,
-  // the smaller file wins. 1: one encode on a grid 6x finer than the coarsest. Eleven inputs
-  // at 1e-3 against 3: 2 came within 3.2 % (and 9.6 % smaller on the full rope), 1 within
-  // 10.3 % (encoder/rate/grid.cpp). The low-rank choice runs in full at every level.
-  int effort = kMaxEffort;
+  // How hard the encoder searches, in [1, 3]. 3: the grid trials walk the refinements
+  // (about four whole encodes, with grid_refinement 0) and every coding order is planned.
+  // 2 (the default): two grids (3x and 8x) side by side, the smaller file wins, and frames
+  // are planned in time order only. 1: one grid 6x finer than the coarsest, time order.
+  // The low-rank choice runs in full at every level (encoder/rate/README.md).
+  int effort = kDefaultEffort;
   // With a PDE model: keep every fitted motion even where it does not pay for its
   // coefficients (in-betweens then follow the model everywhere; the file may be larger).
   // Off: only paying motions are kept, and the file is the one without a PDE model when

@@ -144,8 +144,9 @@ TEST(Guarantee, ChosenGridEncodesLikeTheSameGridGiven) {
 }
 
 // Lower efforts encode the grids they name and nothing else: effort 1 is the file of a grid
-// 6x finer than the coarsest, effort 2 the smaller of 3x and 8x (the coarser of equals); both
-// keep the guarantee. Out-of-range efforts are refused.
+// 6x finer than the coarsest, effort 2 the smaller of 3x and 8x (the coarser of equals), each
+// planned as that effort plans a given grid; both keep the guarantee. Out-of-range efforts
+// are refused.
 TEST(Guarantee, LowerEffortsEncodeTheGridsTheyName) {
   const Animation anim = test::simulate_builtin("cantilever", 12);
   std::string err;
@@ -159,7 +160,7 @@ TEST(Guarantee, LowerEffortsEncodeTheGridsTheyName) {
   };
   EncodeReport rep1, rep2, unused;
   const std::vector<uint8_t> one = encode(1, 0, &rep1), two = encode(2, 0, &rep2);
-  const std::vector<uint8_t> at3 = encode(3, 3.0, &unused), at6 = encode(3, 6.0, &unused), at8 = encode(3, 8.0, &unused);
+  const std::vector<uint8_t> at3 = encode(2, 3.0, &unused), at6 = encode(1, 6.0, &unused), at8 = encode(2, 8.0, &unused);
   EXPECT_EQ(one, at6);
   EXPECT_DOUBLE_EQ(rep1.grid_refinement, 6.0);
   EXPECT_EQ(two, at8.size() < at3.size() ? at8 : at3);

@@ -6,6 +6,7 @@
 #include "codec/common/residual.h"
 #include "codec/compress/residual_encoder.h"
 #include "codec/decompress/model_prediction.h"
+#include "encoder/parallel.h"
 #include "encoder/rate/residual_plan.h"
 
 namespace dcurve {
@@ -24,14 +25,12 @@ std::vector<uint32_t> candidate_lengths(uint32_t F) {
 // *trial's residual layer coded with chunks of K frames; its file.
 bool code_with_length(Model* trial, uint32_t K, const std::vector<std::vector<float>>& frames,
                       const std::vector<int32_t>& rounded, double snap_distance, ResidualOptions ro,
-                      const std::vector<int32_t>* prediction, const WriteOptions& write_options, int threads,
-                      std::vector<uint8_t>* file, std::string* error) {
+                      const std::vector<int32_t>* prediction, const WriteOptions& write_options,
+                      const ResidualPlanOptions& plan_options, std::vector<uint8_t>* file, std::string* error) {
   trial->residual.chunk_frames = K;
   ro.model_prediction = prediction;
-  ResidualPlanOptions po;
-  po.threads = threads;
   std::vector<int32_t> q = rounded;
-  const ResidualPlan plan = choose_chunked_plan(*trial, frames, snap_distance, &q, ro, po);
+  const ResidualPlan plan = choose_chunked_plan(*trial, frames, snap_distance, &q, ro, plan_options);
   trial->residual.payload = encode_residuals(*trial, q, plan, ro);
   if (trial->residual.payload.empty()) return fail(error, "internal error: the chunked residual plan is invalid");
   *file = write_container(*trial, write_options);
@@ -42,8 +41,8 @@ bool code_with_length(Model* trial, uint32_t K, const std::vector<std::vector<fl
 
 bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& frames,
                          const std::vector<int32_t>& rounded, double snap_distance, const ResidualOptions& shared,
-                         const WriteOptions& write_options, int threads, std::vector<uint8_t>* file,
-                         std::string* error) {
+                         const WriteOptions& write_options, const ResidualPlanOptions& plan_options,
+                         std::vector<uint8_t>* file, std::string* error) {
   const uint32_t F = model->meta.frame_count;
   std::vector<int32_t> prediction;
   if (has_model_prediction(*model) && !model_grid_prediction(*model, UINT64_MAX, &prediction, error)) return false;
@@ -52,15 +51,21 @@ bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& fr
   std::vector<Model> trials(lengths.size(), *model);
   std::vector<std::vector<uint8_t>> files(lengths.size());
   const uint32_t current = std::min(std::max(model->residual.chunk_frames, 1u), F);
-  for (size_t i = 0; i < lengths.size(); ++i) {
+  // The lengths are coded side by side, sharing the threads; each writes its own slot.
+  ResidualPlanOptions each = plan_options;
+  each.threads = threads_per_job(plan_options.threads, lengths.size());
+  std::vector<std::string> errors(lengths.size());
+  parallel_for(lengths.size(), plan_options.threads, [&](size_t i) {
     if (lengths[i] == current) {  // already coded so
       files[i] = write_container(*model, write_options);
-      continue;
+      return;
     }
     if (!code_with_length(&trials[i], lengths[i], frames, rounded, snap_distance, shared, predicted, write_options,
-                          threads, &files[i], error))
-      return false;
-  }
+                          each, &files[i], &errors[i]))
+      files[i].clear();
+  });
+  for (size_t i = 0; i < lengths.size(); ++i)
+    if (files[i].empty()) return fail(error, errors[i]);
   size_t smallest = SIZE_MAX;
   for (const std::vector<uint8_t>& f : files) smallest = std::min(smallest, f.size());
   for (size_t i = 0; i < lengths.size(); ++i)

@@ -11,6 +11,7 @@
 #include "codec/common/model.h"
 #include "codec/common/predictors.h"
 #include "codec/compress/container_writer.h"
+#include "encoder/rate/residual_plan.h"
 
 namespace dcurve {
 
@@ -23,11 +24,11 @@ constexpr double kChunkSlack = 0.02;
 
 // Recodes model->residual (its grid, faces, curves and low-rank model kept) at each
 // candidate length from the grid values `rounded` (snapped again within snap_distance of
-// `frames`) and leaves the chosen one in *model, its file (write_container with
-// write_options) in *file.
+// `frames`) with `plan_options`, and leaves the chosen one in *model, its file
+// (write_container with write_options) in *file.
 bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& frames,
                          const std::vector<int32_t>& rounded, double snap_distance, const ResidualOptions& shared,
-                         const WriteOptions& write_options, int threads, std::vector<uint8_t>* file,
-                         std::string* error);
+                         const WriteOptions& write_options, const ResidualPlanOptions& plan_options,
+                         std::vector<uint8_t>* file, std::string* error);
 
 }  // namespace dcurve

@@ -557,6 +557,26 @@ void cut_chunk(const Model& model, const std::vector<std::vector<float>>& frames
   if (options.model_prediction) cut(*options.model_prediction, stride, &in->prediction);
   if (po.axis_runs) cut(*po.axis_runs, 1, &in->runs);
 }
+
+// Plans one chunk on its own (its frames, values, predictions and snapping runs), on
+// `threads` threads, and writes its grid values back into *q.
+void plan_chunk(const Model& model, const std::vector<std::vector<float>>& frames, double max_distance,
+                const ResidualOptions& options, const ResidualPlanOptions& po, ChunkSpan span, int threads,
+                std::vector<int32_t>* q, PredictorPlan* out) {
+  ChunkInput in;
+  in.model = model;
+  in.model.residual.payload.clear();
+  in.model.low_rank = LowRankModel();
+  cut_chunk(model, frames, *q, options, po, span, &in);
+  ResidualOptions chunk_options = options;
+  chunk_options.model_prediction = options.model_prediction ? &in.prediction : nullptr;
+  ResidualPlanOptions chunk_po = po;
+  chunk_po.axis_runs = po.axis_runs ? &in.runs : nullptr;
+  chunk_po.threads = threads;
+  *out = choose_plan_and_grid(in.model, in.frames, max_distance, &in.q, chunk_options, chunk_po);
+  const size_t stride = size_t(model.meta.vertex_count) * 3;
+  std::copy(in.q.begin(), in.q.end(), q->begin() + ptrdiff_t(stride * span.first));
+}
 }  // namespace
 
 ResidualPlan choose_chunked_plan(const Model& model, const std::vector<std::vector<float>>& frames,
@@ -571,22 +591,16 @@ ResidualPlan choose_chunked_plan(const Model& model, const std::vector<std::vect
     return plan;
   }
   Traversal owned;
-  ResidualOptions chunk_options = options;
-  chunk_options.traversal = &traversal_for(model, options, &owned);
-  ChunkInput in;
-  in.model = model;
-  in.model.residual.payload.clear();
-  in.model.low_rank = LowRankModel();
-  const size_t stride = size_t(model.meta.vertex_count) * 3;
-  for (uint32_t c = 0; c < chunk_count(F, K); ++c) {
-    const ChunkSpan span = chunk_span(F, K, c);
-    cut_chunk(model, frames, *q, options, po, span, &in);
-    chunk_options.model_prediction = options.model_prediction ? &in.prediction : nullptr;
-    ResidualPlanOptions chunk_po = po;
-    chunk_po.axis_runs = po.axis_runs ? &in.runs : nullptr;
-    plan.chunks.push_back(choose_plan_and_grid(in.model, in.frames, max_distance, &in.q, chunk_options, chunk_po));
-    std::copy(in.q.begin(), in.q.end(), q->begin() + ptrdiff_t(stride * span.first));
-  }
+  ResidualOptions shared = options;
+  shared.traversal = &traversal_for(model, options, &owned);
+  const uint32_t chunks = chunk_count(F, K);
+  plan.chunks.resize(chunks);
+  // Chunks are planned independently (format 3), side by side: each writes only its own
+  // plan and frames, so the result does not depend on the thread count.
+  const int each = threads_per_job(po.threads, chunks);
+  parallel_for(chunks, po.threads, [&](size_t c) {
+    plan_chunk(model, frames, max_distance, shared, po, chunk_span(F, K, uint32_t(c)), each, q, &plan.chunks[c]);
+  });
   return plan;
 }
 
