@@ -141,9 +141,12 @@ TEST(DecoderMemory, PlaybackStaysWithinABoundThatDoesNotGrowWithTheFrameCount) {
     EXPECT_GE(p->memory_bytes * 4, p->live_bytes * 3) << p->memory_bytes << " vs live " << p->live_bytes;
     EXPECT_LE(p->memory_bytes * 3, p->live_bytes * 4) << p->memory_bytes << " vs live " << p->live_bytes;
   }
-  // Twice the frames: the chunk index grows (a few bytes per chunk), nothing else.
+  // Twice the frames: the chunk index grows (a few bytes per chunk), nothing else. The peak
+  // also holds buffers sized by the largest chunk and the spatial modes the file uses, which
+  // vary with the content by a few KB either way; growing with the clip would add 12 bytes
+  // per vertex and frame, 0.5 MB here.
   EXPECT_LE(long_clip.memory_bytes, short_clip.memory_bytes + 2048);
-  EXPECT_LE(long_clip.peak_bytes, short_clip.peak_bytes + 2048);
+  EXPECT_LE(long_clip.peak_bytes, short_clip.peak_bytes + short_clip.peak_bytes / 8);
   EXPECT_LT(double(long_clip.memory_bytes), 0.15 * double(long_clip.raw_bytes));
   std::printf("memory after playback: 300 frames %zu bytes (live %zu, peak %zu), 600 frames %zu bytes (live %zu, "
               "peak %zu, %.3f of raw)\n",
