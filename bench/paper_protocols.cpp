@@ -105,7 +105,7 @@ bool pde_errors_2024(const std::vector<CurveFrames>& truth, const std::vector<Cu
 }
 
 bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* result, std::string* table,
-              std::string* error) {
+              std::string* error, bool alpha_searches) {
   const uint32_t kFrames = 11;
   if (anim.frames.size() < kFrames) {
     *error = "paper2024 needs at least 11 frames, the animation has " + std::to_string(anim.frames.size());
@@ -205,7 +205,9 @@ bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* resul
   j["pde_variants"] = variants;
   // pde32 + rigid with other time-parameter searches: their alpha and odd-frame errors.
   nlohmann::json searches = nlohmann::json::array();
-  for (TimeSearch ts : {TimeSearch{kMaxTimeWide, false}, TimeSearch{kMaxTimeWide, true}, TimeSearch{kMaxTime2024, true}}) {
+  std::vector<TimeSearch> other_searches;
+  if (alpha_searches) other_searches = {{kMaxTimeWide, false}, {kMaxTimeWide, true}, {kMaxTime2024, true}};
+  for (TimeSearch ts : other_searches) {
     std::vector<FrameError> fe;
     std::vector<std::pair<double, double>> ps;
     double ms = 0;
@@ -423,7 +425,7 @@ bool run_2022(const Animation& anim, const Curves& curves, nlohmann::json* resul
 }  // namespace
 
 bool run_paper_protocol(const std::string& protocol, const Animation& anim, const Curves& curves, nlohmann::json* result,
-                        std::string* table, std::string* error) {
+                        std::string* table, std::string* error, bool alpha_searches) {
   std::string local;
   if (!error) error = &local;
   if (!validate_animation(anim, error)) return false;
@@ -432,7 +434,7 @@ bool run_paper_protocol(const std::string& protocol, const Animation& anim, cons
     *error = "curves: no curves";
     return false;
   }
-  if (protocol == "paper2024") return run_2024(anim, curves, result, table, error);
+  if (protocol == "paper2024") return run_2024(anim, curves, result, table, error, alpha_searches);
   if (protocol == "paper2022") return run_2022(anim, curves, result, table, error);
   *error = "unknown protocol '" + protocol + "' (expected paper2024 or paper2022)";
   return false;
