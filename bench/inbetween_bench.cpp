@@ -36,17 +36,19 @@ double rmse(double squared_sum, const Animation& anim, uint32_t held_out) {
   return std::sqrt(squared_sum / (double(held_out) * anim.vertex_count)) / bbox_diagonal(anim.frames[0]);
 }
 
-// RMSE of `cursor` at the held-out times against the true odd frames.
-bool decoded_rmse(Cursor& cursor, const Animation& anim, double* out, std::string* error) {
-  const uint32_t held_out = held_out_count(anim), even_count = uint32_t((anim.frames.size() + 1) / 2);
+// RMSE of `cursor` against the true frames: at the held-out times and odd frames (odd), or
+// at the stored times and even frames, whose coding error every in-between rule starts from.
+bool decoded_rmse(Cursor& cursor, const Animation& anim, bool odd, double* out, std::string* error) {
+  const uint32_t even_count = uint32_t((anim.frames.size() + 1) / 2);
+  const uint32_t count = odd ? held_out_count(anim) : even_count;
   std::vector<float> xyz(size_t(anim.vertex_count) * 3);
   double sum = 0;
-  for (uint32_t k = 0; k < held_out; ++k) {
+  for (uint32_t k = 0; k < count; ++k) {
     Error e;
-    if (!cursor.evaluate((k + 0.5) / double(even_count - 1), xyz.data(), &e)) return fail(error, e.message);
-    sum += squared_distance(xyz.data(), anim.frames[2 * k + 1]);
+    if (!cursor.evaluate((k + (odd ? 0.5 : 0.0)) / double(even_count - 1), xyz.data(), &e)) return fail(error, e.message);
+    sum += squared_distance(xyz.data(), anim.frames[2 * k + (odd ? 1 : 0)]);
   }
-  *out = rmse(sum, anim, held_out);
+  *out = rmse(sum, anim, count);
   return true;
 }
 
@@ -65,10 +67,10 @@ bool measure_file(const Animation& anim, const Animation& even, const EncodeOpti
   for (uint8_t r = 0; r < kInbetweenCount; ++r) {
     auto cursor = decoder->make_cursor();
     cursor->set_interpolation(Interpolation(r));
-    if (!decoded_rmse(*cursor, anim, &file->rmse[r], error)) return false;
+    if (!decoded_rmse(*cursor, anim, true, &file->rmse[r], error)) return false;
   }
   file->rmse_recorded = file->rmse[uint8_t(file->recorded)];
-  return true;
+  return decoded_rmse(*decoder->make_cursor(), anim, false, &file->rmse_stored, error);
 }
 
 // Each rule through the true even frames, with the formulas the decoder uses.
@@ -96,7 +98,8 @@ void true_frame_rmse(const Animation& anim, double out[kInbetweenCount]) {
 
 nlohmann::json file_json(const InbetweenFile& f) {
   if (!f.present) return nullptr;
-  nlohmann::json j = {{"bytes", f.bytes}, {"recorded", inbetween_name(f.recorded)}, {"rmse_recorded", f.rmse_recorded},
+  nlohmann::json j = {{"bytes", f.bytes},       {"recorded", inbetween_name(f.recorded)},
+                      {"rmse_recorded", f.rmse_recorded}, {"rmse_stored", f.rmse_stored},
                       {"settings", f.settings}};
   for (uint8_t r = 0; r < kInbetweenCount; ++r) j["rmse"][inbetween_name(Inbetween(r))] = f.rmse[r];
   return j;
@@ -128,14 +131,15 @@ bool run_inbetween_bench(const std::string& name, const Animation& anim, const E
 std::string inbetween_table(const std::vector<InbetweenResult>& results) {
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "%-18s %9s %-11s %9s %9s %9s %9s %6s | %9s %9s %9s %9s | %9s %9s %9s\n", "input",
-                "bytes", "recorded", "file", "linear", "c-rom", "herm4", "x cr", "pde.B", "pde.file", "pde.lin",
-                "x cr", "true.lin", "true.cr", "true.h4");
+  std::snprintf(line, sizeof line, "%-18s %9s %-11s %9s %9s %9s %9s %9s %6s | %9s %9s %9s %9s | %9s %9s %9s\n",
+                "input", "bytes", "recorded", "stored", "file", "linear", "c-rom", "herm4", "x cr", "pde.B", "pde.file",
+                "pde.lin", "x cr", "true.lin", "true.cr", "true.h4");
   out += line;
   for (const InbetweenResult& r : results) {
     const double cr = r.true_rmse[uint8_t(Inbetween::CatmullRom)];
-    std::snprintf(line, sizeof line, "%-18s %9llu %-11s %9.3g %9.3g %9.3g %9.3g %6.2f | ", r.input.c_str(),
-                  (unsigned long long)r.plain.bytes, inbetween_name(r.plain.recorded), r.plain.rmse_recorded,
+    std::snprintf(line, sizeof line, "%-18s %9llu %-11s %9.3g %9.3g %9.3g %9.3g %9.3g %6.2f | ", r.input.c_str(),
+                  (unsigned long long)r.plain.bytes, inbetween_name(r.plain.recorded), r.plain.rmse_stored,
+                  r.plain.rmse_recorded,
                   r.plain.rmse[0], r.plain.rmse[1], r.plain.rmse[2], r.plain.rmse_recorded / cr);
     out += line;
     if (r.pde.present)
@@ -147,8 +151,9 @@ std::string inbetween_table(const std::vector<InbetweenResult>& results) {
     std::snprintf(line, sizeof line, "%9.3g %9.3g %9.3g\n", r.true_rmse[0], r.true_rmse[1], r.true_rmse[2]);
     out += line;
   }
-  out += "RMSE at the held-out odd frames, fractions of L; even frames encoded. file: the rule the file records; "
-         "x cr: file / Catmull-Rom through the true even frames (true.cr).\n";
+  out += "RMSE at the held-out odd frames, fractions of L; even frames encoded. stored: RMSE of the decoded even "
+         "frames (the coding error the rules start from); file: the rule the file records; x cr: file / Catmull-Rom "
+         "through the true even frames (true.cr).\n";
   return out;
 }
 

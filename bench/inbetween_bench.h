@@ -20,6 +20,7 @@ struct InbetweenFile {
   Inbetween recorded = Inbetween::Linear;
   double rmse[kInbetweenCount] = {0, 0, 0};  // the file decoded with each rule forced
   double rmse_recorded = 0;                   // with the rule it records
+  double rmse_stored = 0;                     // at the stored (even) frames
   std::string settings;                       // the model kept (PDE file)
 };
 

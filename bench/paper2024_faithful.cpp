@@ -18,6 +18,9 @@ constexpr int kControlPoints = 50;
 constexpr int kTimeTerms = 4, kSpaceTerms = 8, kTerms = kTimeTerms * kSpaceTerms;
 // Six fitted samples 0.2 apart: above pi / (2 * 0.2) the time functions alias between them.
 const double kMaxAlpha = std::acos(-1.0) / (2 * 0.2);
+// The former cap, where issue 39 found the least-squares choice aliasing: the range the
+// leave-one-out choice is shown on.
+constexpr double kMaxAlphaWide = 30.0;
 
 int longest_axis(const std::vector<float>& xyz) {
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
@@ -91,24 +94,58 @@ struct PdeFit {
   Eigen::MatrixXd coeffs;  // 32 x 3
 };
 
-// eq. 25 at each (alpha, r) of a grid; the pair with the smallest squared error wins.
-PdeFit fit_pde(const AlignedCurve& ac, const std::vector<uint32_t>& fitted) {
+// How (alpha, r) is chosen: the grid reaches max_alpha; with leave_out each alpha keeps its
+// best-fitting r and the alpha whose fit best predicts each fitted frame from the others
+// wins, else the pair with the smallest squared error at the fitted frames.
+struct PdeSearch {
+  double max_alpha = kMaxAlpha;
+  bool leave_out = false;
+};
+
+// eq. 25 at one (alpha, r) on the listed frames.
+PdeFit solve_pde(const AlignedCurve& ac, const std::vector<uint32_t>& frames, double alpha, double r) {
+  const Eigen::MatrixXd y = stacked(ac, frames);
+  const Eigen::MatrixXd a = pde_design(ac, frames, alpha, r);
+  // Column scaling: near p = 0 the functions span many magnitudes.
+  Eigen::VectorXd scale = a.colwise().norm().transpose();
+  for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0 ? 1.0 / scale(j) : 1.0;
+  const Eigen::MatrixXd scaled = a * scale.asDiagonal();
+  PdeFit fit{alpha, r, 0, scale.asDiagonal() * scaled.colPivHouseholderQr().solve(y)};
+  fit.sse = (a * fit.coeffs - y).squaredNorm();
+  return fit;
+}
+
+// Squared error at each fitted frame of the fit of the other fitted frames (the end frames
+// too, as encoder/fit/param_search.h's leave_out_error2).
+double leave_out_sse(const AlignedCurve& ac, const std::vector<uint32_t>& fitted, double alpha, double r) {
+  double sum = 0;
+  for (size_t k = 0; k < fitted.size(); ++k) {
+    std::vector<uint32_t> others = fitted;
+    others.erase(others.begin() + std::ptrdiff_t(k));
+    const PdeFit fit = solve_pde(ac, others, alpha, r);
+    sum += (pde_design(ac, {fitted[k]}, alpha, r) * fit.coeffs - ac.xyz[fitted[k]]).squaredNorm();
+  }
+  return sum;
+}
+
+PdeFit fit_pde(const AlignedCurve& ac, const std::vector<uint32_t>& fitted, const PdeSearch& search) {
   std::vector<double> alphas = {0.0}, rs = {0.0};
-  for (int k = 0; k < 8; ++k) alphas.push_back(0.25 * std::pow(kMaxAlpha / 0.25, k / 7.0));
+  for (int k = 0; k < 8; ++k) alphas.push_back(0.25 * std::pow(search.max_alpha / 0.25, k / 7.0));
   for (int k = 0; k < 12; ++k) rs.push_back(0.25 * std::pow(40.0 / 0.25, k / 11.0));
-  const Eigen::MatrixXd y = stacked(ac, fitted);
   PdeFit best;
-  for (double alpha : alphas)
+  double best_score = 1e300;
+  for (double alpha : alphas) {
+    PdeFit at_alpha;
     for (double r : rs) {
-      Eigen::MatrixXd a = pde_design(ac, fitted, alpha, r);
-      // Column scaling: near p = 0 the functions span many magnitudes.
-      Eigen::VectorXd scale = a.colwise().norm().transpose();
-      for (Eigen::Index j = 0; j < scale.size(); ++j) scale(j) = scale(j) > 0 ? 1.0 / scale(j) : 1.0;
-      const Eigen::MatrixXd scaled = a * scale.asDiagonal();
-      const Eigen::MatrixXd c = scale.asDiagonal() * scaled.colPivHouseholderQr().solve(y);
-      const double sse = (a * c - y).squaredNorm();
-      if (sse < best.sse) best = {alpha, r, sse, c};
+      PdeFit fit = solve_pde(ac, fitted, alpha, r);
+      if (fit.sse < at_alpha.sse) at_alpha = std::move(fit);
     }
+    const double score = search.leave_out ? leave_out_sse(ac, fitted, alpha, at_alpha.r) : at_alpha.sse;
+    if (score < best_score) {
+      best_score = score;
+      best = std::move(at_alpha);
+    }
+  }
   return best;
 }
 
@@ -247,44 +284,98 @@ bool surface_lines(const Animation& anim, Curves* lines, std::string* error) {
   return true;
 }
 
+namespace {
+
+// The PDE fits of every curve under one parameter search, and their errors per frame.
+struct PdeRun {
+  PdeSearch search;
+  std::vector<FrameErrors> frames = std::vector<FrameErrors>(kFrames);
+  std::vector<double> alphas, rs;
+};
+
+PdeRun run_pde(const std::vector<AlignedCurve>& curves, const std::vector<uint32_t>& fitted, const PdeSearch& search,
+               double d) {
+  PdeRun run;
+  run.search = search;
+  for (const AlignedCurve& ac : curves) {
+    const PdeFit fit = fit_pde(ac, fitted, search);
+    run.alphas.push_back(fit.alpha);
+    run.rs.push_back(fit.r);
+    for (uint32_t n = 0; n < kFrames; ++n) run.frames[n].add(ac.xyz[n], pde_design(ac, {n}, fit.alpha, fit.r) * fit.coeffs, d);
+  }
+  return run;
+}
+
+nlohmann::json range_json(const std::vector<double>& v) {
+  return {{"min", *std::min_element(v.begin(), v.end())}, {"median", median(v)}, {"max", *std::max_element(v.begin(), v.end())}};
+}
+
+std::string search_name(const PdeSearch& s) {
+  return std::string(s.leave_out ? "alpha by leave-one-out" : "alpha by least squares") + ", alpha <= " +
+         fmt("%.3f", s.max_alpha);
+}
+
+// One line per alternative search: its alpha and its odd-frame errors.
+std::string search_line(const PdeRun& run) {
+  const Summary odd = summarize(run.frames, 1), all = summarize(run.frames, -1);
+  return " " + search_name(run.search) + ": alpha median " + fmt("%.3f", median(run.alphas)) + " (" +
+         fmt("%.3f", *std::min_element(run.alphas.begin(), run.alphas.end())) + " - " +
+         fmt("%.3f", *std::max_element(run.alphas.begin(), run.alphas.end())) + "), odd frames mean E_An " +
+         fmt("%.6f", odd.mean_ea) + ", max E_Mn " + fmt("%.6f", odd.max_em) + "; frames 0-10 " +
+         fmt("%.6f", all.mean_ea) + " / " + fmt("%.6f", all.max_em) + "\n";
+}
+
+}  // namespace
+
 bool run_paper2024_faithful(const Animation& anim, const Curves& curves, nlohmann::json* result, std::string* table,
-                            std::string* error) {
+                            std::string* error, bool alpha_searches) {
   if (anim.frames.size() < kFrames) return fail(error, "paper2024 needs at least 11 frames");
   const uint32_t C = curves.curve_count();
   const int axis = longest_axis(anim.frames[0]);
   const std::vector<uint32_t> fitted = {0, 2, 4, 6, 8, 10};
-  std::vector<FrameErrors> pde(kFrames), spline(kFrames);
-  std::vector<double> alphas, rs;
-  double d = 0;
-  size_t points = 0;
+  std::vector<AlignedCurve> aligned;
   for (uint32_t c = 0; c < C; ++c) {
-    const AlignedCurve ac = align_curve(anim, curves, c, axis);
-    if (ac.points < 2) continue;
-    if (d == 0) d = furthest_pair(ac.xyz[0]);  // the paper's D: its first curve's
+    AlignedCurve ac = align_curve(anim, curves, c, axis);
+    if (ac.points >= 2) aligned.push_back(std::move(ac));
+  }
+  if (aligned.empty()) return fail(error, "no curve of 2 or more points");
+  const double d = furthest_pair(aligned[0].xyz[0]);  // the paper's D: its first curve's
+  if (!(d > 0)) return fail(error, "the first curve has no extent");
+  std::vector<FrameErrors> spline(kFrames);
+  size_t points = 0;
+  for (const AlignedCurve& ac : aligned) {
     points += ac.points;
-    const PdeFit fit = fit_pde(ac, fitted);
-    alphas.push_back(fit.alpha);
-    rs.push_back(fit.r);
     std::vector<std::vector<double>> controls(kFrames);
     for (uint32_t n : fitted) fit_bspline_controls(ac.u[n], as_vector(ac.xyz[n]).data(), kControlPoints, &controls[n]);
-    for (uint32_t n = 0; n < kFrames; ++n) {
-      pde[n].add(ac.xyz[n], pde_design(ac, {n}, fit.alpha, fit.r) * fit.coeffs, d);
-      spline[n].add(ac.xyz[n], spline_at(ac, controls, n), d);
-    }
+    for (uint32_t n = 0; n < kFrames; ++n) spline[n].add(ac.xyz[n], spline_at(ac, controls, n), d);
   }
-  if (!(d > 0)) return fail(error, "the first curve has no extent");
+  // The main table: alpha capped; beside it the former search (least squares up to 30, the
+  // cap issue 39 found aliasing) and the leave-one-out choice over the same range.
+  const PdeRun capped = run_pde(aligned, fitted, PdeSearch{}, d);
+  std::vector<PdeRun> others;
+  if (alpha_searches) {
+    for (bool leave_out : {false, true}) others.push_back(run_pde(aligned, fitted, PdeSearch{kMaxAlphaWide, leave_out}, d));
+    others.push_back(run_pde(aligned, fitted, PdeSearch{kMaxAlpha, true}, d));
+  }
+  const std::vector<FrameErrors>& pde = capped.frames;
   nlohmann::json j;
   j["protocol"] = "paper2024_faithful";
   j["curves"] = C;
-  j["mean_points_per_curve"] = double(points) / C;
+  j["mean_points_per_curve"] = double(points) / double(aligned.size());
   j["D"] = d;
   j["alpha_cap"] = kMaxAlpha;
-  j["alpha"] = {{"min", *std::min_element(alphas.begin(), alphas.end())}, {"median", median(alphas)},
-                {"max", *std::max_element(alphas.begin(), alphas.end())}};
-  j["r"] = {{"min", *std::min_element(rs.begin(), rs.end())}, {"median", median(rs)},
-            {"max", *std::max_element(rs.begin(), rs.end())}};
+  j["alpha"] = range_json(capped.alphas);
+  j["r"] = range_json(capped.rs);
   j["pde"] = summary_json(pde);
   j["bspline"] = summary_json(spline);
+  nlohmann::json searches = nlohmann::json::array();
+  std::string search_text;
+  for (const PdeRun& run : others) {
+    searches.push_back({{"max_alpha", run.search.max_alpha}, {"leave_out", run.search.leave_out},
+                        {"alpha", range_json(run.alphas)}, {"pde", summary_json(run.frames)}});
+    search_text += search_line(run);
+  }
+  j["pde_other_searches"] = searches;
   nlohmann::json rows = nlohmann::json::array();
   for (uint32_t n = 0; n < kFrames; ++n)
     rows.push_back({{"frame", n}, {"pde_EA", pde[n].ea()}, {"pde_EM", pde[n].em}, {"bspline_EA", spline[n].ea()},
@@ -294,12 +385,12 @@ bool run_paper2024_faithful(const Animation& anim, const Curves& curves, nlohman
                      {"bspline", {{"mean_EA", 0.046644}, {"max_EM", 0.270942}}}};
   *result = j;
   if (table)
-    *table = "paper2024, as the paper describes it: " + std::to_string(C) + " full-length curves of " +
-             fmt("%.0f", double(points) / C) + " points, every frame aligned to frame 0 by a 3x3 map, u per frame (eq. 24), D = " +
-             fmt("%.4g", d) + "\n alpha <= " + fmt("%.3f", kMaxAlpha) + ": chosen alpha median " + fmt("%.3f", median(alphas)) +
-             " (" + fmt("%.3f", *std::min_element(alphas.begin(), alphas.end())) + " - " +
-             fmt("%.3f", *std::max_element(alphas.begin(), alphas.end())) + "), r median " + fmt("%.3f", median(rs)) + "\n" +
-             table_text(pde, spline) + " (paper's Table 1, cube-rope: PDE 0.006986 / 0.019478, B-spline 0.046644 / 0.270942)\n";
+    *table = "paper2024, as the paper describes it: " + std::to_string(aligned.size()) + " full-length curves of " +
+             fmt("%.0f", double(points) / double(aligned.size())) +
+             " points, every frame aligned to frame 0 by a 3x3 map, u per frame (eq. 24), D = " + fmt("%.4g", d) +
+             "\n" + search_line(capped) + table_text(pde, spline) +
+             " (paper's Table 1, cube-rope: PDE 0.006986 / 0.019478, B-spline 0.046644 / 0.270942)\n" +
+             (others.empty() ? "" : " the same PDE fit with other alpha searches:\n" + search_text);
   return true;
 }
 

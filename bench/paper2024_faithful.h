@@ -29,7 +29,9 @@ namespace dcurve {
 bool surface_lines(const Animation& anim, Curves* lines, std::string* error);
 
 // Runs the faithful protocol; *table gets the per-frame table and the summaries.
+// alpha_searches: also the former search (least squares, alpha <= 30) and the leave-one-out
+// choice (alpha <= 30 and within the cap), each with its alpha and errors.
 bool run_paper2024_faithful(const Animation& anim, const Curves& curves, nlohmann::json* result, std::string* table,
-                            std::string* error);
+                            std::string* error, bool alpha_searches = false);
 
 }  // namespace dcurve

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "bench/paper_splines.h"
+#include "codec/common/error.h"
 #include "encoder/fit/curve_frames.h"
 #include "encoder/fit/fit.h"
 
@@ -18,6 +19,14 @@ using Clock = std::chrono::steady_clock;
 // frame 0 and sin / cos alias between the samples (issue 39 measured odd-frame errors 4-25x
 // worse with the former cap of 30).
 const double kMaxTime2024 = std::acos(-1.0) / (2 * 0.2);
+// The former cap: the range on which the leave-one-out choice is shown beside the cap.
+constexpr double kMaxTimeWide = 30.0;
+
+// How the time parameter is searched (FitOptions::max_time_param, time_param_by_leave_out).
+struct TimeSearch {
+  double max = kMaxTime2024;
+  bool leave_out = false;
+};
 
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -67,11 +76,13 @@ std::string fmt(const char* f, double v) {
 // params (may be null): the chosen time and space parameters of every curve and axis.
 bool pde_errors_2024(const std::vector<CurveFrames>& truth, const std::vector<CurveFrames>& fit_input,
                      const std::vector<double>& tau_all, Basis basis, bool rigid, std::vector<FrameError>* errors,
-                     double* fit_ms, std::string* error, std::vector<std::pair<double, double>>* params = nullptr) {
+                     double* fit_ms, std::string* error, std::vector<std::pair<double, double>>* params = nullptr,
+                     TimeSearch search = TimeSearch()) {
   FitOptions options;
   options.basis = basis;
   options.remove_rigid = rigid;
-  options.max_time_param = kMaxTime2024;
+  options.max_time_param = search.max;
+  options.time_param_by_leave_out = search.leave_out;
   std::vector<CurveFit> fits;
   Clock::time_point start = Clock::now();
   if (!fit_curves(fit_input, options, 0, &fits, error)) return false;
@@ -94,7 +105,7 @@ bool pde_errors_2024(const std::vector<CurveFrames>& truth, const std::vector<Cu
 }
 
 bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* result, std::string* table,
-              std::string* error) {
+              std::string* error, bool alpha_searches) {
   const uint32_t kFrames = 11;
   if (anim.frames.size() < kFrames) {
     *error = "paper2024 needs at least 11 frames, the animation has " + std::to_string(anim.frames.size());
@@ -192,6 +203,27 @@ bool run_2024(const Animation& anim, const Curves& curves, nlohmann::json* resul
           ", max E_Mn " + fmt("%.6f", em) + "\n";
   }
   j["pde_variants"] = variants;
+  // pde32 + rigid with other time-parameter searches: their alpha and odd-frame errors.
+  nlohmann::json searches = nlohmann::json::array();
+  std::vector<TimeSearch> other_searches;
+  if (alpha_searches) other_searches = {{kMaxTimeWide, false}, {kMaxTimeWide, true}, {kMaxTime2024, true}};
+  for (TimeSearch ts : other_searches) {
+    std::vector<FrameError> fe;
+    std::vector<std::pair<double, double>> ps;
+    double ms = 0;
+    if (!pde_errors_2024(truth, fit_input, tau_all, Basis::Pde32, true, &fe, &ms, error, &ps, ts)) return false;
+    std::vector<double> as;
+    for (auto [alpha, r] : ps) as.push_back(alpha);
+    std::sort(as.begin(), as.end());
+    auto [ea, em] = summarize(fe, true);
+    searches.push_back({{"max_alpha", ts.max}, {"leave_out", ts.leave_out}, {"alpha_median", as[as.size() / 2]},
+                        {"mean_EA_predicted", ea}, {"max_EM_predicted", em}, {"fit_ms", ms}});
+    vt += std::string(" pde32 + rigid, alpha by ") + (ts.leave_out ? "leave-one-out" : "least squares") + " <= " +
+          fmt("%.3f", ts.max) + ": alpha median " + fmt("%.3f", as[as.size() / 2]) + " (" + fmt("%.3f", as.front()) +
+          " - " + fmt("%.3f", as.back()) + "), predicted frames mean E_An " + fmt("%.6f", ea) + ", max E_Mn " +
+          fmt("%.6f", em) + "\n";
+  }
+  j["pde_other_searches"] = searches;
   j["paper_rope"] = {{"pde", {{"mean_EA", 0.006986}, {"max_EM", 0.019478}}},
                      {"bspline", {{"mean_EA", 0.046644}, {"max_EM", 0.270942}}}};
   nlohmann::json rows = nlohmann::json::array();
@@ -245,81 +277,146 @@ struct Ratio2022 {
   double mean() const { return count ? sum / double(count) : 0.0; }
 };
 
+// One method's eq. (23) errors at each keyframe of a pair and its fit time, over a set of
+// curves (all, open or closed).
+struct Method2022 {
+  Ratio2022 key[2];
+  double ms = 0;
+  size_t curves = 0, points = 0;
+  double ea12() const { return 0.5 * (key[0].mean() + key[1].mean()); }
+  double em12() const { return std::max(key[0].worst, key[1].worst); }
+};
+
+enum { kPde2022, kBspline2022, kBezier2022, kMethods2022 };
+const char* const kMethodNames2022[kMethods2022] = {"pde", "bspline", "bezier"};
+
+// Fits one curve's two keyframes with each method and adds the errors and times to m.
+bool fit_pair_2022(const CurveFrames& in, Method2022 m[kMethods2022], std::string* error) {
+  const size_t P = in.points();
+  FitOptions options;  // Pde8, every case searched
+  CurveFit fit;
+  Clock::time_point start = Clock::now();
+  if (!fit_curve(in, options, &fit, error)) return false;
+  m[kPde2022].ms += ms_since(start);
+  std::vector<double> fitted[kMethods2022][2];
+  start = Clock::now();
+  for (size_t j = 0; j < 2; ++j) fit_bspline(in.u, in.xyz.data() + j * P * 3, 4, &fitted[kBspline2022][j]);
+  m[kBspline2022].ms += ms_since(start);
+  start = Clock::now();
+  for (size_t j = 0; j < 2; ++j) fit_bezier(in.u, in.xyz.data() + j * P * 3, &fitted[kBezier2022][j]);
+  m[kBezier2022].ms += ms_since(start);
+  for (size_t j = 0; j < 2; ++j) {
+    fitted[kPde2022][j].resize(P * 3);
+    evaluate_curve_fit(fit, in.u, {}, in.tau[j], fitted[kPde2022][j].data());
+  }
+  for (int k = 0; k < kMethods2022; ++k) {
+    for (size_t j = 0; j < 2; ++j) m[k].key[j].add(in.xyz.data() + j * P * 3, fitted[k][j].data(), P);
+    m[k].curves++;
+    m[k].points += 2 * P;
+  }
+  return true;
+}
+
+// The paper's rows (Tables 2 and 3: E_A1, E_A2, E_A12, E_m1, E_m2, E_m12 in the table's
+// unit, CPU ms) and PM (points on both keyframes) for its open (OC) and closed (CC) curve,
+// method order as kMethodNames2022.
+struct PaperRow2022 {
+  double pm, ea1, ea2, ea12, em1, em2, em12, ms;
+};
+const PaperRow2022 kPaperTable2[2][kMethods2022] = {
+    {{140, 4.641821, 3.811424, 4.226623, 71.60692, 7.954821, 71.60692, 5.7532},
+     {140, 4.631861, 3.813969, 4.222915, 79.84222, 7.796782, 79.84222, 3.3210},
+     {140, 4.631861, 3.813969, 4.222915, 79.84222, 7.796782, 79.84222, 2.8257}},
+    {{142, 4.624602, 3.810121, 4.217362, 71.00726, 7.620819, 71.00726, 5.8322},
+     {142, 4.615302, 3.811597, 4.213450, 71.01385, 7.470214, 71.01385, 3.5928},
+     {142, 4.615302, 3.811597, 4.213450, 71.01385, 7.470214, 71.01385, 2.9644}}};
+const PaperRow2022 kPaperTable3[2][kMethods2022] = {
+    {{132, 2.638812, 3.142145, 2.890479, 8.422275, 19.07610, 19.07610, 5.4184},
+     {132, 2.172167, 2.181193, 2.176680, 80.48240, 80.82564, 80.48240, 3.0592},
+     {132, 2.172167, 2.181193, 2.176680, 80.48240, 8.082564, 80.48240, 2.6934}},
+    {{134, 2.632932, 3.169087, 2.901010, 8.077028, 18.39898, 18.39898, 5.4873},
+     {134, 2.186633, 2.195735, 2.191184, 80.73569, 81.08065, 81.08065, 3.1072},
+     {134, 2.186633, 2.195735, 2.191184, 80.73569, 81.08065, 81.08065, 2.8346}}};
+
+nlohmann::json method_json(const Method2022& m) {
+  return {{"mean_EA", m.ea12()},          {"max_EM", m.em12()},
+          {"EA", {m.key[0].mean(), m.key[1].mean()}}, {"EM", {m.key[0].worst, m.key[1].worst}},
+          {"fit_ms", m.ms},               {"fit_ms_per_curve", m.curves ? m.ms / double(m.curves) : 0.0},
+          {"curves", m.curves},           {"design_variables_per_curve", 8}};
+}
+
+std::string row_text(const char* method, const char* kind, double pm, const double v[7], double unit) {
+  std::string t = std::string(" ") + method + kind + fmt("%7.1f", pm) + "    8";
+  for (int k = 0; k < 6; ++k) t += fmt(" %9.4f", v[k] * unit);
+  return t + fmt(" %8.4f", v[6]) + "\n";
+}
+
+// One of Tables 2-3: keyframes a and b, rows per method and curve kind (open, closed), our
+// figures (PM: mean points of a curve on both keyframes; errors and ms per curve) beside
+// the paper's.
+bool table_2022(const Animation& anim, const Curves& curves, uint32_t a, uint32_t b, const PaperRow2022 paper[2][3],
+                double unit, const char* unit_name, nlohmann::json* out, std::string* text, std::string* error) {
+  Method2022 by_kind[2][kMethods2022], all[kMethods2022];
+  for (uint32_t c = 0; c < curves.curve_count(); ++c) {
+    const CurveFrames in = gather_curve_frames(anim, curves, c, {a, b}, {0.0, 1.0});
+    Method2022 one[kMethods2022];
+    if (!fit_pair_2022(in, one, error)) return fail(error, "curve " + std::to_string(c) + ": " + *error);
+    for (Method2022* dst : {by_kind[curves.closed[c] ? 1 : 0], all})
+      for (int k = 0; k < kMethods2022; ++k) {
+        for (int j = 0; j < 2; ++j) {
+          dst[k].key[j].sum += one[k].key[j].sum;
+          dst[k].key[j].count += one[k].key[j].count;
+          dst[k].key[j].worst = std::max(dst[k].key[j].worst, one[k].key[j].worst);
+        }
+        dst[k].ms += one[k].ms;
+        dst[k].curves += one[k].curves;
+        dst[k].points += one[k].points;
+      }
+  }
+  nlohmann::json j = {{"frames", {a, b}}, {"error_unit", unit_name}};
+  for (int k = 0; k < kMethods2022; ++k) j[kMethodNames2022[k]] = method_json(all[k]);
+  *text += " keyframes " + std::to_string(a) + " and " + std::to_string(b) + ", errors x " + unit_name +
+           " (eq. 23), PM = points of one curve on both keyframes, CPU ms per curve\n";
+  *text += " method    kind    PM  PBB      E_A1      E_A2     E_A12      E_m1      E_m2     E_m12   CPU ms\n";
+  for (int kind = 0; kind < 2; ++kind) {
+    const char* kind_name = kind ? " CC " : " OC ";
+    for (int k = 0; k < kMethods2022; ++k) {
+      const Method2022& m = by_kind[kind][k];
+      j[kind ? "closed" : "open"][kMethodNames2022[k]] = method_json(m);
+      if (m.curves == 0) continue;
+      const double per = 1.0 / double(m.curves);
+      const double ours[7] = {m.key[0].mean(), m.key[1].mean(), m.ea12(), m.key[0].worst, m.key[1].worst, m.em12(), m.ms * per};
+      const char* name = k == kPde2022 ? "PDE     " : k == kBspline2022 ? "B-spline" : "Bezier  ";
+      *text += row_text(name, kind_name, double(m.points) * per, ours, 1.0 / unit);
+      const PaperRow2022& p = paper[kind][k];
+      const double theirs[7] = {p.ea1, p.ea2, p.ea12, p.em1, p.em2, p.em12, p.ms};
+      *text += row_text(" paper  ", kind_name, p.pm, theirs, 1.0);
+    }
+    *text += "   (" + std::to_string(by_kind[kind][0].curves) + (kind ? " closed" : " open") + " curves)\n";
+  }
+  *out = j;
+  return true;
+}
+
 bool run_2022(const Animation& anim, const Curves& curves, nlohmann::json* result, std::string* table,
               std::string* error) {
   const uint32_t F = uint32_t(anim.frames.size());
-  if (F < 2) {
-    *error = "paper2022 needs at least 2 frames";
-    return false;
-  }
+  if (F < 2) return fail(error, "paper2022 needs at least 2 frames");
+  // Table 2: keyframes far apart (the paper's 20 and 100; first and last when fewer frames);
+  // Table 3: adjacent keyframes (the paper's 37 and 38; the middle two when fewer).
   const uint32_t a = F > 100 ? 20 : 0, b = F > 100 ? 100 : F - 1;
-  const uint32_t C = curves.curve_count();
-  std::vector<CurveFrames> input(C);
-  for (uint32_t c = 0; c < C; ++c) input[c] = gather_curve_frames(anim, curves, c, {a, b}, {0.0, 1.0});
-
-  FitOptions options;  // Pde8, every case searched
-  std::vector<CurveFit> fits(C);
-  Clock::time_point start = Clock::now();
-  for (uint32_t c = 0; c < C; ++c)
-    if (!fit_curve(input[c], options, &fits[c], error)) {
-      *error = "curve " + std::to_string(c) + ": " + *error;
-      return false;
-    }
-  const double pde_ms = ms_since(start);
-
-  std::vector<std::vector<double>> bezier(size_t(C) * 2), bspline(size_t(C) * 2);
-  start = Clock::now();
-  for (uint32_t c = 0; c < C; ++c)
-    for (size_t j = 0; j < 2; ++j)
-      fit_bezier(input[c].u, input[c].xyz.data() + j * input[c].points() * 3, &bezier[c * 2 + j]);
-  const double bezier_ms = ms_since(start);
-  start = Clock::now();
-  for (uint32_t c = 0; c < C; ++c)
-    for (size_t j = 0; j < 2; ++j)
-      fit_bspline(input[c].u, input[c].xyz.data() + j * input[c].points() * 3, 4, &bspline[c * 2 + j]);
-  const double bspline_ms = ms_since(start);
-
-  Ratio2022 pde, bez, bsp;
-  std::vector<double> predicted;
-  size_t points = 0;
-  for (uint32_t c = 0; c < C; ++c) {
-    const CurveFrames& in = input[c];
-    const size_t P = in.points();
-    points += P;
-    predicted.resize(P * 3);
-    for (size_t j = 0; j < 2; ++j) {
-      const double* truth = in.xyz.data() + j * P * 3;
-      evaluate_curve_fit(fits[c], in.u, {}, in.tau[j], predicted.data());
-      pde.add(truth, predicted.data(), P);
-      bez.add(truth, bezier[c * 2 + j].data(), P);
-      bsp.add(truth, bspline[c * 2 + j].data(), P);
-    }
-  }
-  auto entry = [&](const Ratio2022& r, double ms, int vars) {
-    return nlohmann::json{{"mean_EA", r.mean()}, {"max_EM", r.worst}, {"fit_ms", ms},
-                          {"fit_ms_per_curve", C ? ms / C : 0.0}, {"design_variables_per_curve", vars}};
-  };
-  nlohmann::json j;
+  const uint32_t c = F > 38 ? 37 : (F - 1) / 2;
+  nlohmann::json far, near;
+  std::string t = "paper2022: " + std::to_string(curves.curve_count()) + " curves\nTable 2:";
+  if (!table_2022(anim, curves, a, b, kPaperTable2, 1e-3, "1e-3", &far, &t, error)) return false;
+  t += "Table 3:";
+  if (!table_2022(anim, curves, c, c + 1, kPaperTable3, 1e-4, "1e-4", &near, &t, error)) return false;
+  t += " (paper: one open curve of 70 and one closed curve of 71 points per keyframe, from its horse)\n";
+  nlohmann::json j = far;
   j["protocol"] = "paper2022";
-  j["frames"] = {a, b};
-  j["curves"] = C;
-  j["mean_points_per_curve"] = C ? double(points) / C : 0.0;
-  j["pde"] = entry(pde, pde_ms, 8);
-  j["bezier"] = entry(bez, bezier_ms, 8);
-  j["bspline"] = entry(bsp, bspline_ms, 8);
-  j["paper_table2_open_curve"] = {{"pde_fit_ms", 5.75}, {"bezier_fit_ms", 2.8257}};
-  std::string t = "paper2022: keyframes " + std::to_string(a) + " and " + std::to_string(b) + ", " +
-                  std::to_string(C) + " curves, " + fmt("%.1f", C ? double(points) / C : 0.0) +
-                  " points per curve (errors x 1e-3, eq. (23))\n";
-  t += " method     vector coeffs   E_A        E_M        fit ms   ms/curve\n";
-  auto line = [&](const char* name, const Ratio2022& r, double ms) {
-    t += std::string(name) + fmt("%14.0f", 8) + fmt("  %9.4f", r.mean() * 1e3) + fmt("  %9.4f", r.worst * 1e3) +
-         fmt("  %8.2f", ms) + fmt("  %8.4f", C ? ms / C : 0.0) + "\n";
-  };
-  line(" PDE 8-term", pde, pde_ms);
-  line(" Bezier    ", bez, bezier_ms);
-  line(" B-spline  ", bsp, bspline_ms);
-  t += " (paper Table 2, open 71-point curve: PDE 5.75 ms, Bezier 2.83 ms per pair)\n";
+  j["curves"] = curves.curve_count();
+  j["table2"] = far;
+  j["table3"] = near;
   *result = j;
   if (table) *table = t;
   return true;
@@ -328,7 +425,7 @@ bool run_2022(const Animation& anim, const Curves& curves, nlohmann::json* resul
 }  // namespace
 
 bool run_paper_protocol(const std::string& protocol, const Animation& anim, const Curves& curves, nlohmann::json* result,
-                        std::string* table, std::string* error) {
+                        std::string* table, std::string* error, bool alpha_searches) {
   std::string local;
   if (!error) error = &local;
   if (!validate_animation(anim, error)) return false;
@@ -337,7 +434,7 @@ bool run_paper_protocol(const std::string& protocol, const Animation& anim, cons
     *error = "curves: no curves";
     return false;
   }
-  if (protocol == "paper2024") return run_2024(anim, curves, result, table, error);
+  if (protocol == "paper2024") return run_2024(anim, curves, result, table, error, alpha_searches);
   if (protocol == "paper2022") return run_2022(anim, curves, result, table, error);
   *error = "unknown protocol '" + protocol + "' (expected paper2024 or paper2022)";
   return false;

@@ -26,7 +26,11 @@
 namespace dcurve {
 
 // Runs "paper2024" or "paper2022" on an animation with a given curve partition; returns the JSON result; prints a table to `table` when non-null.
-bool run_paper_protocol(const std::string& protocol, const Animation& anim, const Curves& curves, nlohmann::json* result, std::string* table, std::string* error);
+// alpha_searches (paper2024): also fits with the former time-parameter search (least squares
+// up to 30) and with the leave-one-out choice, and reports their alpha and errors (three
+// more fits of every curve).
+bool run_paper_protocol(const std::string& protocol, const Animation& anim, const Curves& curves, nlohmann::json* result,
+                        std::string* table, std::string* error, bool alpha_searches = false);
 
 // Rows of `columns` consecutive vertices (a row-major grid such as cloth-sphere's 50 x 50
 // sheet), u by chord length on frame 0. Fails unless vertex_count is a multiple of columns.

@@ -43,8 +43,8 @@ bool add_faithful_2024(const Animation& anim, nlohmann::json* result, std::strin
   }
   nlohmann::json faithful, honest;
   std::string faithful_table, honest_table;
-  if (!run_paper2024_faithful(anim, lines, &faithful, table ? &faithful_table : nullptr, error) ||
-      !run_paper_protocol("paper2024", anim, lines, &honest, table ? &honest_table : nullptr, error))
+  if (!run_paper2024_faithful(anim, lines, &faithful, table ? &faithful_table : nullptr, error, true) ||
+      !run_paper_protocol("paper2024", anim, lines, &honest, table ? &honest_table : nullptr, error, true))
     return false;
   (*result)["faithful"] = faithful;
   (*result)["honest_on_lines"] = honest;
@@ -68,7 +68,7 @@ int run_protocol(const Opts& o, const std::string& protocol) {
     nlohmann::json result;
     if (!load_input(arg, &name, &anim, &err) ||
         !extract_curves(anim.frames[0], anim.vertex_count, anim.faces, CurveOptions{}, &curves, &err) ||
-        !run_paper_protocol(protocol, anim, curves, &result, o.json ? nullptr : &table, &err)) {
+        !run_paper_protocol(protocol, anim, curves, &result, o.json ? nullptr : &table, &err, true)) {
       std::fprintf(stderr, "dcurve bench: %s: %s\n", arg.c_str(), err.c_str());
       return 1;
     }

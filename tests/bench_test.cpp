@@ -13,6 +13,7 @@
 
 
 #include "bench/baselines.h"
+#include "bench/inbetween_bench.h"
 #include "bench/draco_per_frame.h"
 #include "bench/plot.h"
 #include "bench/report.h"
@@ -313,6 +314,27 @@ TEST(BenchCli, BadInputsFailClearly) {
   EXPECT_NE(out.find("no .obj, .ply or .off frames"), std::string::npos) << out;
   out = run_cli("--protocol paper2024", &status);
   EXPECT_EQ(status, 2) << out;
+}
+
+// The in-between bench on a sheet whose every vertex moves on a parabola in time: the stored
+// frames decode within the tolerance, Catmull-Rom through the true even frames is exact
+// (it reproduces quadratics, end frames included) and linear blending is not.
+TEST(BenchInbetween, StoredWithinToleranceAndCatmullRomExactOnParabolas) {
+  Animation a = waving_sheet(6, 9);
+  for (size_t f = 0; f < a.frames.size(); ++f)
+    for (size_t i = 0; i < a.frames[f].size(); ++i)
+      a.frames[f][i] = float(a.frames[0][i] + 0.003 * double(f * f) * (1 + double(i % 3)));
+  EncodeOptions options;
+  options.tolerance = 1e-3;
+  InbetweenResult r;
+  std::string error;
+  ASSERT_TRUE(run_inbetween_bench("parabolas", a, options, false, &r, &error)) << error;
+  EXPECT_EQ(r.held_out, 4u);
+  EXPECT_GT(r.plain.rmse_stored, 0.0);
+  EXPECT_LE(r.plain.rmse_stored, options.tolerance);
+  EXPECT_LT(r.true_rmse[uint8_t(Inbetween::CatmullRom)], 1e-6);
+  EXPECT_GT(r.true_rmse[uint8_t(Inbetween::Linear)], 1e-3);
+  EXPECT_EQ(r.plain.rmse_recorded, r.plain.rmse[uint8_t(r.plain.recorded)]);
 }
 
 }  // namespace

@@ -4,10 +4,12 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "codec/common/basis.h"
 #include "encoder/fit/fit.h"
+#include "encoder/fit/param_search.h"
 
 namespace dcurve {
 namespace {
@@ -350,6 +352,34 @@ TEST(FitCore, StoredFitNeverLosesToThePolynomialLimitInFloat) {
     ASSERT_TRUE(fit_curve(c, o, &polynomial, &error)) << error;
     EXPECT_LE(searched.rms_error, polynomial.rms_error * (1 + 1e-6) + 1e-9) << "trial " << trial;
   }
+}
+
+// Leaving a fitted frame out: zero at the generating parameters (each frame is predicted
+// exactly by the others), positive at a wrong alpha, and the search keeps the generating
+// alpha though its range reaches far beyond it.
+TEST(FitCore, LeaveOneOutKeepsTheGeneratingTimeParameter) {
+  std::mt19937 rng(5);
+  const Truth t{Basis::Pde32, 0, 2.5, 6.0};
+  std::vector<double> coeffs[3];
+  const CurveFrames curve = curve_from_truth(t, rng, 40, 6, coeffs);
+  const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(curve.u.data(), Eigen::Index(curve.u.size()));
+  const Eigen::VectorXd tau = Eigen::Map<const Eigen::VectorXd>(curve.tau.data(), Eigen::Index(curve.tau.size()));
+  Eigen::MatrixXd w(Eigen::Index(curve.points()), Eigen::Index(curve.frames()));
+  for (size_t f = 0; f < curve.frames(); ++f)
+    for (size_t p = 0; p < curve.points(); ++p) w(Eigen::Index(p), Eigen::Index(f)) = curve.xyz[(f * curve.points() + p) * 3];
+  const double scale = w.squaredNorm();
+  EXPECT_LT(leave_out_error2(w, u, tau, t.basis, 0, t.time_param, t.space_param), 1e-16 * scale);
+  EXPECT_GT(leave_out_error2(w, u, tau, t.basis, 0, 20.0, t.space_param), 1e-6 * scale);
+  EXPECT_EQ(leave_out_error2(w.leftCols(2), u, tau.head(2), t.basis, 0, t.time_param, t.space_param),
+            std::numeric_limits<double>::infinity());
+  FitOptions o;
+  o.basis = t.basis;
+  o.max_time_param = 30;
+  o.time_param_by_leave_out = true;
+  CurveFit fit;
+  std::string error;
+  ASSERT_TRUE(fit_curve(curve, o, &fit, &error)) << error;
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(fit.axis[a].motion.time_param, t.time_param, 1e-4) << a;
 }
 
 TEST(FitCore, RejectsBadInput) {

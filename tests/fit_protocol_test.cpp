@@ -133,6 +133,13 @@ TEST(PaperProtocols, Paper2022PdeNeverLosesToTheCubicItContains) {
   EXPECT_GT(bez, 0);
   EXPECT_LE(pde, bez * (1 + 1e-6));
   EXPECT_NEAR(bez, bsp, 1e-9 * bez);  // a 4-point clamped cubic B-spline is the Bezier curve
+  // Table 3: adjacent keyframes, the same containment; every row is an open curve.
+  const nlohmann::json& near = j["table3"];
+  EXPECT_EQ(near["frames"][0], 1);
+  EXPECT_EQ(near["frames"][1], 2);
+  EXPECT_LE(near["pde"]["mean_EA"].get<double>(), near["bezier"]["mean_EA"].get<double>() * (1 + 1e-6));
+  EXPECT_EQ(near["open"]["pde"]["curves"], 5);
+  EXPECT_EQ(near["closed"]["pde"]["curves"], 0);
 }
 
 TEST(PaperProtocols, BsplineWithManyControlPointsInterpolatesFewPoints) {

@@ -40,6 +40,11 @@ struct FitOptions {
   int coarse_space_steps = 14;
   int refined_cases = 2;             // best coarse cases refined by Levenberg-Marquardt
   int refine_iterations = 30;
+  // Time parameter by held-out frames: each candidate's time_param is the value of the
+  // coarse grid (or the refined one) that best predicts each fitted frame from the others
+  // (case and space parameter as searched; param_search.h, leave_out_error2). A fit that matches the samples closely
+  // may alias between them; this choice targets the frames between. Needs 3+ frames.
+  bool time_param_by_leave_out = false;
 };
 
 struct AxisFit {

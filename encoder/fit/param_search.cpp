@@ -126,7 +126,45 @@ ParamChoice refine(const Eigen::MatrixXd& w, const Eigen::VectorXd& u, const Eig
   return start;
 }
 
+// Re-chooses c.time_param among `tgrid` and its own value by leave_out_error2, its space
+// parameter and case fixed; residual2 follows the new value.
+ParamChoice time_param_left_out(const Eigen::MatrixXd& w, const Eigen::VectorXd& u, const Eigen::VectorXd& tau,
+                                Basis b, const std::vector<double>& tgrid, ParamChoice c) {
+  double best = leave_out_error2(w, u, tau, b, c.basis_case, c.time_param, c.space_param);
+  const double refined = c.time_param;
+  for (double mu : tgrid) {
+    const double e = leave_out_error2(w, u, tau, b, c.basis_case, mu, c.space_param);
+    if (e < best) {
+      best = e;
+      c.time_param = mu;
+    }
+  }
+  if (c.time_param != refined) c.residual2 = projected_residual2(w, u, tau, b, c.basis_case, c.time_param, c.space_param);
+  return c;
+}
+
 }  // namespace
+
+double leave_out_error2(const Eigen::MatrixXd& w, const Eigen::VectorXd& u, const Eigen::VectorXd& tau, Basis basis,
+                        int basis_case, double time_param, double space_param) {
+  const Eigen::Index F = tau.size();
+  if (F < 3) return std::numeric_limits<double>::infinity();
+  ScaledRange space;
+  space.compute(space_design(basis, basis_case, space_param, u), false);
+  const Eigen::MatrixXd z = space.q.transpose() * w;  // space-projected samples, rank x frames
+  // What the space functions cannot reach is missed at every frame, whatever the time fit.
+  double sum = (w - space.q * z).squaredNorm();
+  const Eigen::MatrixXd t = time_design(basis, basis_case, time_param, tau);
+  for (Eigen::Index k = 0; k < F; ++k) {
+    Eigen::MatrixXd t_others(F - 1, t.cols()), z_others(z.rows(), F - 1);
+    t_others << t.topRows(k), t.bottomRows(F - 1 - k);
+    z_others << z.leftCols(k), z.rightCols(F - 1 - k);
+    ScaledRange time;
+    time.compute(t_others, true);
+    sum += (z.col(k) - z_others * time.pinv.transpose() * t.row(k).transpose()).squaredNorm();
+  }
+  return sum;
+}
 
 double projected_residual2(const Eigen::MatrixXd& w, const Eigen::VectorXd& u, const Eigen::VectorXd& tau,
                            Basis basis, int basis_case, double time_param, double space_param) {
@@ -187,7 +225,11 @@ std::array<std::vector<ParamChoice>, 3> search_parameters(const std::array<Eigen
                      [](const ParamChoice& x, const ParamChoice& y) { return x.residual2 < y.residual2; });
     std::vector<ParamChoice>& out = chosen[size_t(a)];
     size_t n = std::min(ranked.size(), size_t(std::max(1, o.refined_cases)));
-    for (size_t k = 0; k < n; ++k) out.push_back(refine(w[size_t(a)], u, tau, o, ranked[k]));
+    for (size_t k = 0; k < n; ++k) {
+      out.push_back(refine(w[size_t(a)], u, tau, o, ranked[k]));
+      if (o.time_param_by_leave_out && o.fixed_time_param < 0 && tau.size() >= 3)
+        out.back() = time_param_left_out(w[size_t(a)], u, tau, b, tgrid, out.back());
+    }
     std::stable_sort(out.begin(), out.end(),
                      [](const ParamChoice& x, const ParamChoice& y) { return x.residual2 < y.residual2; });
   }
