@@ -177,334 +177,391 @@ bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>&
   return true;
 }
 
-}  // namespace
+// One low-rank choice: the anchors (frame average, first frame, each posed), the screening
+// of counts and steps on a sample of frames, then full trials of the promising candidates.
+// Each step is a member; they share the inputs and what earlier steps found.
+class LowRankSearch {
+ public:
+  LowRankSearch(Model* model, const PlannedResidual& planned, const std::vector<std::vector<float>>& frames,
+                const std::vector<int32_t>& rounded, double snap_distance, const WriteOptions& write_options,
+                const LowRankChoiceOptions& options, std::string* error)
+      : model_(model), planned_(planned), frames_(frames), rounded_(rounded), snap_(snap_distance),
+        write_options_(write_options), options_(options), error_(error),
+        F_(model->meta.frame_count), n_(size_t(model->meta.vertex_count) * 3), forced_(options.components > 0) {}
 
-bool choose_low_rank(Model* model, const PlannedResidual& planned, const std::vector<std::vector<float>>& frames,
-                     const std::vector<int32_t>& rounded, double snap_distance, const WriteOptions& write_options,
-                     const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error) {
-  LowRankChoiceReport rep;
-  const uint32_t F = model->meta.frame_count;
-  const size_t n = size_t(model->meta.vertex_count) * 3;
-  const bool forced = options.components > 0;
-  rep.bytes_without = rep.bytes = write_container(*model, write_options).size();
-  if (report) *report = rep;
-  if (options.components == 0) return true;
-  if (options.components > int(kMaxLowRankComponents))
-    return fail(error, "low-rank component count must be at most " + std::to_string(kMaxLowRankComponents));
-  if (has_motion_model(*model)) {
-    if (forced) return fail(error, "a low-rank model cannot be combined with a PDE motion model");
-    return true;
+  // False only on an internal error; *report as choose_low_rank fills it.
+  bool run(LowRankChoiceReport* report);
+
+ private:
+  void build_anchors();
+  void build_sample();
+  bool screen(const GridComponents& pca, uint32_t K, double step, bool* screened, std::vector<Candidate>* into);
+  bool screen(const GridComponents& pca, uint32_t K, double step, bool* screened) {
+    return screen(pca, K, step, screened, &candidates_);
   }
-  if (!forced && (F < 3 || double(F) * F * double(n) > kMaxGramWork)) return true;
+  const Candidate* best_of(const GridComponents* pca, bool by_ratio, const std::vector<uint32_t>& skip = {}) const;
+  const Candidate* best_rescued(const GridComponents* pca) const;
+  bool screen_anchor(const GridComponents& pca);
+  bool screen_first_step(const GridComponents& pca, const std::vector<uint32_t>& counts, size_t* cut);
+  bool refine_steps(const GridComponents& pca);
+  bool screen_larger_counts(const GridComponents& pca, const Candidate** best);
+  bool screen_halfway_counts(const GridComponents& pca, const Candidate& best);
+  bool rescue_cut_counts(const GridComponents& pca, const std::vector<uint32_t>& counts, size_t cut);
+  bool posed_beats_twin(size_t i, bool* beats);
+  bool run_trials();
+  bool run_trial(const Candidate& c, bool from_rescue, uint64_t* bytes);
+  bool worth_a_trial(const Candidate& c) const;
 
-  // Every walk below shares one traversal (it depends on the faces or curves alone) and
-  // the encode's weight tables.
-  ResidualOptions shared;
-  shared.weights_source = options.weights;
-  shared.traversal = options.traversal;
-  Traversal owned;
-  shared.traversal = &traversal_for(*model, shared, &owned);
+  Model* model_;
+  const PlannedResidual& planned_;
+  const std::vector<std::vector<float>>& frames_;
+  const std::vector<int32_t>& rounded_;
+  const double snap_;
+  const WriteOptions& write_options_;
+  const LowRankChoiceOptions& options_;
+  std::string* error_;
+  const uint32_t F_;
+  const size_t n_;
+  const bool forced_;
 
-  // What the residual layer pays today, frame by frame.
-  const ResidualPlan& plan_without = planned.plan;
-  const std::vector<double> bits_without = frame_bits(*model, planned.values, plan_without, shared);
+  LowRankChoiceReport rep_;
+  ResidualOptions shared_;  // one traversal and the encode's weight tables for every walk
+  Traversal owned_traversal_;
+  std::vector<double> bits_without_;  // what the residual layer pays today, frame by frame
+  std::vector<GridComponents> pcas_;  // built before any candidate points into it
+  size_t posed_from_ = 0;             // the posed anchors follow their unposed twins
+  FramePoses poses_;
+  FrameSample sample_;
+  double sample_scale_ = 1;
+  std::vector<std::vector<AxisRun>> sample_runs_;
+  ResidualPlanOptions screen_options_;
+  std::vector<Candidate> candidates_, rescued_;
+  std::vector<BasisMemo> memos_;  // per anchor
+  uint64_t best_bytes_ = 0;
+  Model best_model_;
+};
 
-  // Two anchors, each screened over every count: the frame average, the classic centre, and
-  // the first frame, often the cleanest shape of an animation (a rest pose, modelled or
-  // generated, whose regular mesh codes in far fewer bytes than the average's blur of poses),
-  // at the price of components that must also span the average's offset from it. At 1e-3
-  // the first frame took the neck from 7,708 to 6,765 bytes and cantilever 1,933 -> 1,712;
-  // alone it lost on the sheet (57,351 -> 58,618), hence the screening of both. The first
-  // frame is screened only when it codes smaller than the rounded average: its shape is its
-  // one advantage, and on horse-gallop, chicken-crossing and crane it has none (their
-  // modelled meshes are no cleaner than the average), where its screening tripled the time of
-  // a 5-frame crane encode.
-  const uint32_t max_components = std::min<uint32_t>(kMaxLowRankComponents, F - 1);
-  std::vector<GridComponents> pcas;
-  pcas.push_back(grid_components(rounded, F, n, max_components, kMeanAnchor));
-  if (options.first_frame_anchor && !pcas[0].mean.empty()) {
-    std::vector<int32_t> average(n);
-    for (size_t i = 0; i < n; ++i) average[i] = int32_t(std::lround(pcas[0].mean[i]));
-    const std::vector<int32_t> first(rounded.begin(), rounded.begin() + std::ptrdiff_t(n));
-    if (anchor_bytes(*model, first, options.threads, shared.traversal) <
-        anchor_bytes(*model, average, options.threads, shared.traversal))
-      pcas.push_back(grid_components(rounded, F, n, max_components, 0));
+// Two anchors, each screened over every count: the frame average, the classic centre, and
+// the first frame, often the cleanest shape of an animation (a rest pose, modelled or
+// generated, whose regular mesh codes in far fewer bytes than the average's blur of poses),
+// at the price of components that must also span the average's offset from it. At 1e-3
+// the first frame took the neck from 7,708 to 6,765 bytes and cantilever 1,933 -> 1,712;
+// alone it lost on the sheet (57,351 -> 58,618), hence the screening of both. The first
+// frame is screened only when it codes smaller than the rounded average: its shape is its
+// one advantage, and on horse-gallop, chicken-crossing and crane it has none (their
+// modelled meshes are no cleaner than the average), where its screening tripled the time of
+// a 5-frame crane encode. Each anchor again in frame 0's pose, for bodies that turn.
+void LowRankSearch::build_anchors() {
+  const uint32_t max_components = std::min<uint32_t>(kMaxLowRankComponents, F_ - 1);
+  pcas_.push_back(grid_components(rounded_, F_, n_, max_components, kMeanAnchor));
+  if (options_.first_frame_anchor && !pcas_[0].mean.empty()) {
+    std::vector<int32_t> average(n_);
+    for (size_t i = 0; i < n_; ++i) average[i] = int32_t(std::lround(pcas_[0].mean[i]));
+    const std::vector<int32_t> first(rounded_.begin(), rounded_.begin() + std::ptrdiff_t(n_));
+    if (anchor_bytes(*model_, first, options_.threads, shared_.traversal) <
+        anchor_bytes(*model_, average, options_.threads, shared_.traversal))
+      pcas_.push_back(grid_components(rounded_, F_, n_, max_components, 0));
   }
-  // Each anchor again in frame 0's pose, for bodies that turn.
-  FramePoses poses;
-  const size_t posed_from = pcas.size();  // the posed anchors follow their unposed twins
-  if (options.posed_anchors && !forced && estimate_frame_poses(rounded, F, n, &poses) &&
-      poses.max_angle >= kMinPoseAngle) {
-    for (size_t i = 0; i < posed_from; ++i) {
-      pcas.push_back(grid_components(poses.aligned, F, n, max_components, pcas[i].anchor));
-      pcas.back().poses = poses.poses;
-      std::copy(poses.centre, poses.centre + 3, pcas.back().pose_centre);
+  posed_from_ = pcas_.size();
+  if (options_.posed_anchors && !forced_ && estimate_frame_poses(rounded_, F_, n_, &poses_) &&
+      poses_.max_angle >= kMinPoseAngle) {
+    for (size_t i = 0; i < posed_from_; ++i) {
+      pcas_.push_back(grid_components(poses_.aligned, F_, n_, max_components, pcas_[i].anchor));
+      pcas_.back().poses = poses_.poses;
+      std::copy(poses_.centre, poses_.centre + 3, pcas_.back().pose_centre);
     }
   }
-  // Screening: the Model predictor alone, time order, on a sample of the frames, against
-  // today's bits of the same frames. A model whose section alone outweighs today's residual
-  // payload cannot pay and is skipped.
-  ResidualPlanOptions screen;
-  screen.kinds = 1u << int(PredictorKind::Model);
+  memos_.resize(pcas_.size());
+}
+
+// Screening: the Model predictor alone, time order, on a sample of the frames, against
+// today's bits of the same frames.
+void LowRankSearch::build_sample() {
+  screen_options_.kinds = 1u << int(PredictorKind::Model);
   // Without Fit: offered here too, it moved the screening's ranking (at 1e-3 blob coded
   // 14,304 bytes instead of 11,638, cantilever 1,730 instead of 1,504).
-  screen.spatial_modes = ~(1u << int(SpatialMode::Fit));
-  screen.gop_sizes = {1};
-  screen.threads = options.threads;
+  screen_options_.spatial_modes = ~(1u << int(SpatialMode::Fit));
+  screen_options_.gop_sizes = {1};
+  screen_options_.threads = options_.threads;
   // An odd stride: hierarchical coding orders make every power-of-two-th frame dearer.
-  const FrameSample sample = sample_frames(*model, frames, rounded, ((F + kScreenFrames - 1) / kScreenFrames) | 1);
-  const double sample_scale = double(F) / double(sample.frames.size());
+  sample_ = sample_frames(*model_, frames_, rounded_, ((F_ + kScreenFrames - 1) / kScreenFrames) | 1);
+  sample_scale_ = double(F_) / double(sample_.frames.size());
   // Every screening plan snaps the same frames on the same grid.
-  const std::vector<std::vector<AxisRun>> sample_runs =
-      plan_axis_runs(sample.model, sample.input, snap_distance, options.threads);
-  screen.axis_runs = &sample_runs;
-  std::vector<Candidate> candidates, rescued;
-  std::vector<BasisMemo> memos(pcas.size());  // per anchor
-  // Screens count K at `step` into `into` (the candidates unless given).
-  auto try_candidate = [&](const GridComponents& pca, uint32_t K, double step, bool* screened,
-                           std::vector<Candidate>* into = nullptr) {
-    if (!into) into = &candidates;
-    *screened = false;
-    Model trial = *model;
-    std::vector<int32_t> mean_and_basis;
-    const std::vector<int32_t>& refit = pca.poses.empty() ? rounded : poses.aligned;
-    if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), options.threads, &trial, &refit,
-                           &memos[size_t(&pca - pcas.data())], shared.traversal, &mean_and_basis))
-      return true;
-    const double section = double(low_rank_bytes(trial).size());
-    if (!forced && section >= double(model->residual.payload.size())) return true;
-    // The sampled frames' predictions, from the values the basis payload codes (the full
-    // trials decode the payload, as a decoder does).
-    std::vector<int32_t> sampled(sample.frames.size() * n), q = sample.rounded;
-    std::vector<int64_t> sums(n);
-    for (size_t j = 0; j < sample.frames.size(); ++j)
-      low_rank_frame(trial.low_rank, sample.frames[j], mean_and_basis.data(), n, sampled.data() + j * n, sums.data());
-    ResidualOptions ro = shared;
-    ro.model_prediction = &sampled;
-    const ResidualPlan plan = choose_chunked_plan(sample.model, sample.input, snap_distance, &q, ro, screen);
-    const std::vector<double> bits = frame_bits(sample.model, q, plan, ro);
-    double saved = 0;
-    for (size_t j = 0; j < sample.frames.size(); ++j)
-      saved += std::max(0.0, bits_without[sample.frames[j]] - bits[j]) / 8 * sample_scale;
-    into->push_back({std::move(trial.low_rank), &pca, step, saved, section, saved - section});
-    ++rep.screened;
-    *screened = true;
-    return true;
-  };
-  // Every step below ranks the candidates of one anchor only.
-  auto best_of = [&](const GridComponents* pca, bool by_ratio, const std::vector<uint32_t>& skip = {}) {
-    // by_ratio: saved bytes per section byte instead of net bytes; skip: counts left out.
-    const Candidate* best = nullptr;
-    for (const Candidate& c : candidates) {
-      if (c.pca != pca || std::find(skip.begin(), skip.end(), c.model.components) != skip.end()) continue;
-      if (!best || (by_ratio ? c.saved_bytes * best->section_bytes > best->saved_bytes * c.section_bytes
-                             : c.net_bytes > best->net_bytes))
-        best = &c;
-    }
-    return best;
-  };
-  auto best_rescued = [&](const GridComponents* pca) {
-    const Candidate* best = nullptr;
-    for (const Candidate& c : rescued)
-      if (c.pca == pca && (!best || c.net_bytes > best->net_bytes)) best = &c;
-    return best;
-  };
-  // Counts the first step cut off (from counts[cut] on, ascending), each at the first coarser
-  // step where its section fits, set apart (`rescued`) so that nothing else changes: the
-  // first step's cut can hide the best count of an anchor (the sheet at 1e-3, grid 8x: the
-  // frame-0 anchor's K = 56 codes 46,569 bytes, while its trials of the counts screened,
-  // K = 1 and 2, coded 63,448 and 64,280), but ranking the rescued counts with the others
-  // moved the trials elsewhere (blob 11,638 -> 11,749 bytes, rope-small 19,791 -> 19,852,
-  // horse-gallop 68,352 -> 70,353). They get a trial of their own below. The best of them is
-  // refined as the screened counts are: at every other step, then halfway to its neighbours
-  // at its best step; while they save enough (kRescueRatio).
-  auto rescue_cut_counts = [&](const GridComponents& pca, const std::vector<uint32_t>& counts, size_t cut) {
-    if (!options.rescue_cut_counts || forced) return true;
-    auto saves_enough = [](const Candidate& c) { return c.saved_bytes >= kRescueRatio * c.section_bytes; };
-    // A count's section grows with K, so a larger count fits no finer step than the last.
-    size_t from = 0;
-    for (size_t i = cut; i < counts.size(); ++i) {
-      bool screened = false;
-      for (; from < std::size(kOtherSteps); ++from) {
-        if (kOtherSteps[from] <= kFirstStep) continue;
-        if (!try_candidate(pca, counts[i], kOtherSteps[from], &screened, &rescued)) return false;
-        if (screened) break;
-      }
-      if (!screened || !saves_enough(rescued.back())) break;
-    }
-    const Candidate* top = best_rescued(&pca);
-    if (!top || !saves_enough(*top)) return true;
-    const uint32_t top_K = top->model.components;
-    const double top_step = top->basis_step;
-    for (double other : kOtherSteps) {
-      // Tried above, top_step itself, or finer than the first step, where top_K was cut.
-      if (other <= top_step) continue;
-      bool screened = false;
-      if (!try_candidate(pca, top_K, other, &screened, &rescued)) return false;
-    }
-    const double best_step = best_rescued(&pca)->basis_step;
-    for (uint32_t mid : halfway_counts(counts, top_K)) {
-      bool screened = false;
-      if (!try_candidate(pca, mid, best_step, &screened, &rescued)) return false;
-    }
-    return true;
-  };
-  auto screen_anchor = [&](const GridComponents& pca) {
-    const uint32_t available = uint32_t(pca.weights.size());
-    std::vector<uint32_t> counts;
-    if (forced && available > 0) counts.push_back(std::min(uint32_t(options.components), available));
-    for (uint32_t K : kComponentCounts)
-      if (!forced && K <= available) counts.push_back(K);
-    double best_net = -HUGE_VAL;
-    int worse = 0;
-    size_t cut = counts.size();  // the first count whose section outweighed the payload
-    for (size_t i = 0; i < counts.size(); ++i) {
-      const uint32_t K = counts[i];
-      if (worse >= kPatience) break;
-      bool screened = false;
-      if (!try_candidate(pca, K, kFirstStep, &screened)) return false;
-      if (!screened) {  // larger counts cost more still
-        cut = i;
-        break;
-      }
-      if (candidates.back().net_bytes > best_net) {
-        best_net = candidates.back().net_bytes;
-        worse = 0;
-      } else {
-        ++worse;
-      }
-    }
-    // Other steps for the best count and the runner-up, unless even the coarsest could not
-    // pay: a coarser basis saves less, and its section shrinks by about the step ratio at
-    // most. When no count pays at the first step, the one that comes closest relative to
-    // its section: a coarser step may make it pay (the sheet at 1e-3, grid 4x: K = 48 at
-    // step 0.4). The runner-up too, since the first step's ranking is close and the best
-    // step differs by count: horse-gallop at 1e-3 (grid 2x) ranks K = 3 and K = 1 within
-    // 250 bytes at step 0.15; K = 1 at step 1 codes 85,910 bytes, K = 3 at its best 88,463.
-    std::vector<uint32_t> refined;
-    for (int round = 0; round < kRefinedCounts; ++round) {
-      const Candidate* first = best_of(&pca, false, refined);
-      if (first && first->net_bytes <= 0) first = best_of(&pca, true, refined);
-      if (!first) break;
-      const uint32_t K = first->model.components;  // try_candidate may move the candidates
-      refined.push_back(K);
-      if (first->saved_bytes <= kFirstStep / kOtherSteps[std::size(kOtherSteps) - 1] * first->section_bytes) continue;
-      for (double step : kOtherSteps) {
-        bool screened = false;
-        if (!try_candidate(pca, K, step, &screened)) return false;
-      }
-    }
-    const Candidate* best = best_of(&pca, false);
-    if (forced || !best || best->net_bytes <= 0) return rescue_cut_counts(pca, counts, cut);
-    // When the best count is the largest screened, the first step cut off the next ones
-    // (their section alone outweighed the payload) before the net saving was seen to fall:
-    // at the refined, coarser step they may pay, so they are screened at it, upwards while
-    // they are (the sheet at 1e-3, grid 8x: K = 56 coded 55,023 bytes, 48 57,351).
-    const bool cut_off = std::none_of(candidates.begin(), candidates.end(), [&](const Candidate& c) {
-      return c.pca == &pca && c.model.components > best->model.components;
-    });
-    if (cut_off) {
-      const uint32_t K = best->model.components;
-      const double step = best->basis_step;
-      for (uint32_t larger : kComponentCounts) {
-        if (larger <= K || larger > available) continue;
-        bool screened = false;
-        if (!try_candidate(pca, larger, step, &screened)) return false;
-        if (!screened) break;
-      }
-      best = best_of(&pca, false);
-    }
-    // Counts between the screened ones, halfway to the best one's screened neighbours, at the
-    // best one's step: near its best the net saving is smooth enough in K for that to find
-    // what the list misses (blob at 1e-3: K = 20 between 16 and 24, 14,028 -> 13,308 bytes).
-    // After the step search, so that a count found here competes at a refined step, not the
-    // first one. Once: a second halving (tried with the midpoints at the first step) lost on
-    // the blob, its estimate preferring K = 18, whose full encode was larger (13,568 bytes),
-    // and only the best estimate is encoded.
-    std::vector<uint32_t> screened_counts;
-    for (const Candidate& c : candidates)
-      if (c.pca == &pca) screened_counts.push_back(c.model.components);
-    std::sort(screened_counts.begin(), screened_counts.end());
-    screened_counts.erase(std::unique(screened_counts.begin(), screened_counts.end()), screened_counts.end());
-    const double step = best->basis_step;
-    for (uint32_t mid : halfway_counts(screened_counts, best->model.components)) {
-      bool screened = false;
-      if (mid <= available && !try_candidate(pca, mid, step, &screened)) return false;
-    }
-    return rescue_cut_counts(pca, counts, cut);
-  };
-  // A posed anchor is screened in full only when it beats its unposed twin at the twin's
-  // best count and step, and otherwise leaves no candidate behind (no trial): the pose helps
-  // bodies that turn while they deform, and screening and trying every posed anchor made the
-  // neck's encode 43 % slower for the same file. At 1e-3 the blob's posed estimate at its
-  // twin's K = 20 was 14,029 bytes net against 12,563 (its trial: 11,638 -> 10,185 bytes);
-  // the neck's 13,487 against 13,732 and 14,867 against 15,298 (both trials lost).
-  for (size_t i = 0; i < pcas.size(); ++i) {
-    const GridComponents& pca = pcas[i];
-    if (!pca.poses.empty()) {
-      const Candidate* twin = best_of(&pcas[i - posed_from], false);
-      if (!twin) continue;
-      const uint32_t K = twin->model.components;
-      const double step = twin->basis_step, net = twin->net_bytes;
-      bool screened = false;
-      if (!try_candidate(pca, K, step, &screened)) return false;
-      if (!screened) continue;
-      if (candidates.back().net_bytes <= net) {
-        candidates.pop_back();
-        continue;
-      }
-    }
-    if (!screen_anchor(pca)) return false;
-  }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.net_bytes > b.net_bytes; });
+  sample_runs_ = plan_axis_runs(sample_.model, sample_.input, snap_, options_.threads);
+  screen_options_.axis_runs = &sample_runs_;
+}
 
-  // Full trials of the promising ones; the smallest whole file wins. With a good model the
-  // coding order matters little: time order and the order chosen without one are tried.
+// Screens count K at `step` into `into`. A model whose section alone outweighs today's
+// residual payload cannot pay and is skipped (*screened false).
+bool LowRankSearch::screen(const GridComponents& pca, uint32_t K, double step, bool* screened,
+                           std::vector<Candidate>* into) {
+  *screened = false;
+  Model trial = *model_;
+  std::vector<int32_t> mean_and_basis;
+  const std::vector<int32_t>& refit = pca.poses.empty() ? rounded_ : poses_.aligned;
+  if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), options_.threads, &trial, &refit,
+                         &memos_[size_t(&pca - pcas_.data())], shared_.traversal, &mean_and_basis))
+    return true;
+  const double section = double(low_rank_bytes(trial).size());
+  if (!forced_ && section >= double(model_->residual.payload.size())) return true;
+  // The sampled frames' predictions, from the values the basis payload codes (the full
+  // trials decode the payload, as a decoder does).
+  std::vector<int32_t> sampled(sample_.frames.size() * n_), q = sample_.rounded;
+  std::vector<int64_t> sums(n_);
+  for (size_t j = 0; j < sample_.frames.size(); ++j)
+    low_rank_frame(trial.low_rank, sample_.frames[j], mean_and_basis.data(), n_, sampled.data() + j * n_,
+                   sums.data());
+  ResidualOptions ro = shared_;
+  ro.model_prediction = &sampled;
+  const ResidualPlan plan = choose_chunked_plan(sample_.model, sample_.input, snap_, &q, ro, screen_options_);
+  const std::vector<double> bits = frame_bits(sample_.model, q, plan, ro);
+  double saved = 0;
+  for (size_t j = 0; j < sample_.frames.size(); ++j)
+    saved += std::max(0.0, bits_without_[sample_.frames[j]] - bits[j]) / 8 * sample_scale_;
+  into->push_back({std::move(trial.low_rank), &pca, step, saved, section, saved - section});
+  ++rep_.screened;
+  *screened = true;
+  return true;
+}
+
+// The best candidate of one anchor: by net bytes, or (by_ratio) by saved bytes per section
+// byte; `skip`: counts left out.
+const Candidate* LowRankSearch::best_of(const GridComponents* pca, bool by_ratio,
+                                        const std::vector<uint32_t>& skip) const {
+  const Candidate* best = nullptr;
+  for (const Candidate& c : candidates_) {
+    if (c.pca != pca || std::find(skip.begin(), skip.end(), c.model.components) != skip.end()) continue;
+    if (!best || (by_ratio ? c.saved_bytes * best->section_bytes > best->saved_bytes * c.section_bytes
+                           : c.net_bytes > best->net_bytes))
+      best = &c;
+  }
+  return best;
+}
+
+const Candidate* LowRankSearch::best_rescued(const GridComponents* pca) const {
+  const Candidate* best = nullptr;
+  for (const Candidate& c : rescued_)
+    if (c.pca == pca && (!best || c.net_bytes > best->net_bytes)) best = &c;
+  return best;
+}
+
+// Counts the first step cut off (from counts[cut] on, ascending), each at the first coarser
+// step where its section fits, set apart (`rescued_`) so that nothing else changes: the
+// first step's cut can hide the best count of an anchor (the sheet at 1e-3, grid 8x: the
+// frame-0 anchor's K = 56 codes 46,569 bytes, while its trials of the counts screened,
+// K = 1 and 2, coded 63,448 and 64,280), but ranking the rescued counts with the others
+// moved the trials elsewhere (blob 11,638 -> 11,749 bytes, rope-small 19,791 -> 19,852,
+// horse-gallop 68,352 -> 70,353). They get a trial of their own. The best of them is
+// refined as the screened counts are: at every other step, then halfway to its neighbours
+// at its best step; while they save enough (kRescueRatio).
+bool LowRankSearch::rescue_cut_counts(const GridComponents& pca, const std::vector<uint32_t>& counts, size_t cut) {
+  if (!options_.rescue_cut_counts || forced_) return true;
+  auto saves_enough = [](const Candidate& c) { return c.saved_bytes >= kRescueRatio * c.section_bytes; };
+  // A count's section grows with K, so a larger count fits no finer step than the last.
+  size_t from = 0;
+  for (size_t i = cut; i < counts.size(); ++i) {
+    bool screened = false;
+    for (; from < std::size(kOtherSteps); ++from) {
+      if (kOtherSteps[from] <= kFirstStep) continue;
+      if (!screen(pca, counts[i], kOtherSteps[from], &screened, &rescued_)) return false;
+      if (screened) break;
+    }
+    if (!screened || !saves_enough(rescued_.back())) break;
+  }
+  const Candidate* top = best_rescued(&pca);
+  if (!top || !saves_enough(*top)) return true;
+  const uint32_t top_K = top->model.components;
+  const double top_step = top->basis_step;
+  for (double other : kOtherSteps) {
+    // Tried above, top_step itself, or finer than the first step, where top_K was cut.
+    if (other <= top_step) continue;
+    bool screened = false;
+    if (!screen(pca, top_K, other, &screened, &rescued_)) return false;
+  }
+  const double best_step = best_rescued(&pca)->basis_step;
+  for (uint32_t mid : halfway_counts(counts, top_K)) {
+    bool screened = false;
+    if (!screen(pca, mid, best_step, &screened, &rescued_)) return false;
+  }
+  return true;
+}
+
+// Every count at the first step, ascending, until kPatience counts in a row fail to beat the
+// best or one's section outweighs the payload (*cut: its index, counts.size() if none).
+bool LowRankSearch::screen_first_step(const GridComponents& pca, const std::vector<uint32_t>& counts, size_t* cut) {
+  double best_net = -HUGE_VAL;
+  int worse = 0;
+  *cut = counts.size();
+  for (size_t i = 0; i < counts.size(); ++i) {
+    if (worse >= kPatience) break;
+    bool screened = false;
+    if (!screen(pca, counts[i], kFirstStep, &screened)) return false;
+    if (!screened) {  // larger counts cost more still
+      *cut = i;
+      break;
+    }
+    if (candidates_.back().net_bytes > best_net) {
+      best_net = candidates_.back().net_bytes;
+      worse = 0;
+    } else {
+      ++worse;
+    }
+  }
+  return true;
+}
+
+// Other steps for the best count and the runner-up, unless even the coarsest could not pay:
+// a coarser basis saves less, and its section shrinks by about the step ratio at most. When
+// no count pays at the first step, the one that comes closest relative to its section: a
+// coarser step may make it pay (the sheet at 1e-3, grid 4x: K = 48 at step 0.4). The
+// runner-up too, since the first step's ranking is close and the best step differs by
+// count: horse-gallop at 1e-3 (grid 2x) ranks K = 3 and K = 1 within 250 bytes at step
+// 0.15; K = 1 at step 1 codes 85,910 bytes, K = 3 at its best 88,463.
+bool LowRankSearch::refine_steps(const GridComponents& pca) {
+  std::vector<uint32_t> refined;
+  for (int round = 0; round < kRefinedCounts; ++round) {
+    const Candidate* first = best_of(&pca, false, refined);
+    if (first && first->net_bytes <= 0) first = best_of(&pca, true, refined);
+    if (!first) break;
+    const uint32_t K = first->model.components;  // screen may move the candidates
+    refined.push_back(K);
+    if (first->saved_bytes <= kFirstStep / kOtherSteps[std::size(kOtherSteps) - 1] * first->section_bytes) continue;
+    for (double step : kOtherSteps) {
+      bool screened = false;
+      if (!screen(pca, K, step, &screened)) return false;
+    }
+  }
+  return true;
+}
+
+// When the best count is the largest screened, the first step cut off the next ones (their
+// section alone outweighed the payload) before the net saving was seen to fall: at the
+// refined, coarser step they may pay, so they are screened at it, upwards while they are
+// (the sheet at 1e-3, grid 8x: K = 56 coded 55,023 bytes, 48 57,351). *best follows.
+bool LowRankSearch::screen_larger_counts(const GridComponents& pca, const Candidate** best) {
+  const uint32_t K = (*best)->model.components;
+  const bool cut_off = std::none_of(candidates_.begin(), candidates_.end(), [&](const Candidate& c) {
+    return c.pca == &pca && c.model.components > K;
+  });
+  if (!cut_off) return true;
+  const double step = (*best)->basis_step;
+  for (uint32_t larger : kComponentCounts) {
+    if (larger <= K || larger > pca.weights.size()) continue;
+    bool screened = false;
+    if (!screen(pca, larger, step, &screened)) return false;
+    if (!screened) break;
+  }
+  *best = best_of(&pca, false);
+  return true;
+}
+
+// Counts between the screened ones, halfway to the best one's screened neighbours, at the
+// best one's step: near its best the net saving is smooth enough in K for that to find what
+// the list misses (blob at 1e-3: K = 20 between 16 and 24, 14,028 -> 13,308 bytes). After
+// the step search, so that a count found here competes at a refined step, not the first
+// one. Once: a second halving (tried with the midpoints at the first step) lost on the
+// blob, its estimate preferring K = 18, whose full encode was larger (13,568 bytes), and
+// only the best estimate is encoded.
+bool LowRankSearch::screen_halfway_counts(const GridComponents& pca, const Candidate& best) {
+  std::vector<uint32_t> screened_counts;
+  for (const Candidate& c : candidates_)
+    if (c.pca == &pca) screened_counts.push_back(c.model.components);
+  std::sort(screened_counts.begin(), screened_counts.end());
+  screened_counts.erase(std::unique(screened_counts.begin(), screened_counts.end()), screened_counts.end());
+  const double step = best.basis_step;
+  const uint32_t K = best.model.components;  // screen may move the candidates
+  for (uint32_t mid : halfway_counts(screened_counts, K)) {
+    bool screened = false;
+    if (mid <= pca.weights.size() && !screen(pca, mid, step, &screened)) return false;
+  }
+  return true;
+}
+
+bool LowRankSearch::screen_anchor(const GridComponents& pca) {
+  const uint32_t available = uint32_t(pca.weights.size());
+  std::vector<uint32_t> counts;
+  if (forced_ && available > 0) counts.push_back(std::min(uint32_t(options_.components), available));
+  for (uint32_t K : kComponentCounts)
+    if (!forced_ && K <= available) counts.push_back(K);
+  size_t cut = counts.size();
+  if (!screen_first_step(pca, counts, &cut) || !refine_steps(pca)) return false;
+  const Candidate* best = best_of(&pca, false);
+  if (forced_ || !best || best->net_bytes <= 0) return rescue_cut_counts(pca, counts, cut);
+  if (!screen_larger_counts(pca, &best) || !screen_halfway_counts(pca, *best)) return false;
+  return rescue_cut_counts(pca, counts, cut);
+}
+
+// A posed anchor is screened in full only when it beats its unposed twin at the twin's best
+// count and step, and otherwise leaves no candidate behind (no trial): the pose helps bodies
+// that turn while they deform, and screening and trying every posed anchor made the neck's
+// encode 43 % slower for the same file. At 1e-3 the blob's posed estimate at its twin's
+// K = 20 was 14,029 bytes net against 12,563 (its trial: 11,638 -> 10,185 bytes); the neck's
+// 13,487 against 13,732 and 14,867 against 15,298 (both trials lost).
+bool LowRankSearch::posed_beats_twin(size_t i, bool* beats) {
+  *beats = false;
+  const Candidate* twin = best_of(&pcas_[i - posed_from_], false);
+  if (!twin) return true;
+  const uint32_t K = twin->model.components;
+  const double step = twin->basis_step, net = twin->net_bytes;
+  bool screened = false;
+  if (!screen(pcas_[i], K, step, &screened)) return false;
+  if (!screened) return true;
+  if (candidates_.back().net_bytes <= net) {
+    candidates_.pop_back();
+    return true;
+  }
+  *beats = true;
+  return true;
+}
+
+bool LowRankSearch::worth_a_trial(const Candidate& c) const {
+  const bool cheap = double(F_) * model_->meta.vertex_count <= kCheapTrial;
+  return forced_ || c.saved_bytes > (cheap ? kCheapTrialSavingFactor : kTrialSavingFactor) * c.section_bytes;
+}
+
+// The full trial of c (one of `rescued_` when from_rescue): *bytes its whole file, kept when
+// the smallest so far. With a good model the coding order matters little: time order and
+// the order chosen without one are tried.
+bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* bytes) {
   ResidualPlanOptions trial_plan;
   trial_plan.gop_sizes = {1};
-  trial_plan.threads = options.threads;
-  const std::vector<uint32_t>& order_without = plan_without.chunks[0].order;
+  trial_plan.threads = options_.threads;
+  const std::vector<uint32_t>& order_without = planned_.plan.chunks[0].order;
   if (order_without.size() > 2 && order_without[1] > 1) trial_plan.gop_sizes.push_back(order_without[1]);
-  uint64_t best = forced ? UINT64_MAX : rep.bytes_without;
-  Model best_model;
-  const bool cheap = double(F) * model->meta.vertex_count <= kCheapTrial;
-  // Trials per anchor: the estimate ranks candidates of one anchor well enough, but not
-  // the two anchors against each other (rope-small at 1e-3: it preferred the frame
-  // average's best, 28,152 bytes, to the first frame's, 26,209). Skipping the other anchor's
-  // trial when its estimate falls more than 3 % behind kept the other built-in scenes' files
-  // but lost on the sheet: at grid 6x the average's best, estimated 10.5 % behind, coded
-  // 58,404 bytes against the first frame's 60,078, and the grid search then stopped at 4x
-  // (58,190 against 57,351).
+  Model trial = *model_;
+  trial.low_rank = c.model;
+  if (!encode_with_prediction(&trial, frames_, rounded_, snap_, trial_plan, shared_, error_)) return false;
+  ++rep_.trials;
+  *bytes = write_container(trial, write_options_).size();
+  if (*bytes < best_bytes_) {
+    best_bytes_ = *bytes;
+    best_model_ = std::move(trial);
+    rep_.components = c.model.components;
+    rep_.basis_step = c.basis_step;
+    rep_.rescued = from_rescue;
+  }
+  return true;
+}
+
+// Full trials of the promising candidates, best estimate first; the smallest whole file wins.
+// Trials per anchor: the estimate ranks candidates of one anchor well enough, but not the
+// two anchors against each other (rope-small at 1e-3: it preferred the frame average's best,
+// 28,152 bytes, to the first frame's, 26,209). Skipping the other anchor's trial when its
+// estimate falls more than 3 % behind kept the other built-in scenes' files but lost on the
+// sheet: at grid 6x the average's best, estimated 10.5 % behind, coded 58,404 bytes against
+// the first frame's 60,078, and the grid search then stopped at 4x (58,190 against 57,351).
+bool LowRankSearch::run_trials() {
+  std::stable_sort(candidates_.begin(), candidates_.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.net_bytes > b.net_bytes; });
+  best_bytes_ = forced_ ? UINT64_MAX : rep_.bytes_without;
   std::vector<std::pair<const GridComponents*, uint32_t>> tried;  // anchor, count
   // An anchor whose first trial saved less than half its estimate gets a second one, of
   // another count: the estimate misjudged that count, maybe not the next (horse-gallop at
   // 1e-3, grid 2x: K = 3 estimated 8,730 bytes net and saved 90; K = 1 then saved 2,643).
   std::vector<const GridComponents*> disappointed;
-  auto worth_a_trial = [&](const Candidate& c) {
-    return forced || c.saved_bytes > (cheap ? kCheapTrialSavingFactor : kTrialSavingFactor) * c.section_bytes;
-  };
-  // The full trial of c (one of `rescued` when from_rescue): *bytes its whole file, kept
-  // when the smallest so far.
-  auto run_trial = [&](const Candidate& c, bool from_rescue, uint64_t* bytes) {
-    Model trial = *model;
-    trial.low_rank = c.model;
-    if (!encode_with_prediction(&trial, frames, rounded, snap_distance, trial_plan, shared, error))
-      return false;
-    ++rep.trials;
-    *bytes = write_container(trial, write_options).size();
-    if (*bytes < best) {
-      best = *bytes;
-      best_model = std::move(trial);
-      rep.components = c.model.components;
-      rep.basis_step = c.basis_step;
-      rep.rescued = from_rescue;
-    }
-    return true;
-  };
-  for (const Candidate& c : candidates) {
+  for (const Candidate& c : candidates_) {
     const auto same_anchor = [&](const std::pair<const GridComponents*, uint32_t>& t) { return t.first == c.pca; };
-    const uint32_t allowed = options.max_trials + uint32_t(std::count(disappointed.begin(), disappointed.end(), c.pca));
+    const uint32_t allowed = options_.max_trials + uint32_t(std::count(disappointed.begin(), disappointed.end(), c.pca));
     if (uint32_t(std::count_if(tried.begin(), tried.end(), same_anchor)) >= allowed) continue;
     if (!worth_a_trial(c)) continue;
     // A second trial of the same count at another step mostly repeats the first's error.
@@ -513,26 +570,64 @@ bool choose_low_rank(Model* model, const PlannedResidual& planned, const std::ve
     uint64_t bytes = 0;
     if (!run_trial(c, false, &bytes)) return false;
     const bool first_of_anchor = std::count_if(tried.begin(), tried.end(), same_anchor) == 1;
-    if (!forced && first_of_anchor && double(rep.bytes_without) - double(bytes) < 0.5 * c.net_bytes)
+    if (!forced_ && first_of_anchor && double(rep_.bytes_without) - double(bytes) < 0.5 * c.net_bytes)
       disappointed.push_back(c.pca);
   }
   // Per anchor, the best rescued count gets one more trial when its estimate beats every
   // candidate the anchor had, so no file grows. At 1e-3: sheet 47,558 -> 46,569 bytes,
   // cloth-sphere 76,945 -> 74,252, crane 103,204 -> 98,865; the other seven inputs the same
   // files (horse-gallop runs two such trials, both losing).
-  for (const GridComponents& pca : pcas) {
+  for (const GridComponents& pca : pcas_) {
     const Candidate* c = best_rescued(&pca);
     const Candidate* screened = best_of(&pca, false);
     if (!c || (screened && c->net_bytes <= screened->net_bytes) || !worth_a_trial(*c)) continue;
     uint64_t bytes = 0;
     if (!run_trial(*c, true, &bytes)) return false;
   }
-  if (rep.components > 0) {
-    *model = std::move(best_model);
-    rep.bytes = best;
-  }
-  if (report) *report = rep;
   return true;
+}
+
+bool LowRankSearch::run(LowRankChoiceReport* report) {
+  rep_.bytes_without = rep_.bytes = write_container(*model_, write_options_).size();
+  if (report) *report = rep_;
+  if (options_.components == 0) return true;
+  if (options_.components > int(kMaxLowRankComponents))
+    return fail(error_, "low-rank component count must be at most " + std::to_string(kMaxLowRankComponents));
+  if (has_motion_model(*model_)) {
+    if (forced_) return fail(error_, "a low-rank model cannot be combined with a PDE motion model");
+    return true;
+  }
+  if (!forced_ && (F_ < 3 || double(F_) * F_ * double(n_) > kMaxGramWork)) return true;
+  shared_.weights_source = options_.weights;
+  shared_.traversal = options_.traversal;
+  shared_.traversal = &traversal_for(*model_, shared_, &owned_traversal_);
+  bits_without_ = frame_bits(*model_, planned_.values, planned_.plan, shared_);
+  build_anchors();
+  build_sample();
+  for (size_t i = 0; i < pcas_.size(); ++i) {
+    if (!pcas_[i].poses.empty()) {
+      bool beats = false;
+      if (!posed_beats_twin(i, &beats)) return false;
+      if (!beats) continue;
+    }
+    if (!screen_anchor(pcas_[i])) return false;
+  }
+  if (!run_trials()) return false;
+  if (rep_.components > 0) {
+    *model_ = std::move(best_model_);
+    rep_.bytes = best_bytes_;
+  }
+  if (report) *report = rep_;
+  return true;
+}
+
+}  // namespace
+
+bool choose_low_rank(Model* model, const PlannedResidual& planned, const std::vector<std::vector<float>>& frames,
+                     const std::vector<int32_t>& rounded, double snap_distance, const WriteOptions& write_options,
+                     const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error) {
+  LowRankSearch search(model, planned, frames, rounded, snap_distance, write_options, options, error);
+  return search.run(report);
 }
 
 }  // namespace dcurve
