@@ -21,6 +21,7 @@
 #include "encoder/rate/block_flags.h"
 #include "encoder/rate/inbetween_choice.h"
 #include "encoder/rate/chunk_choice.h"
+#include "encoder/rate/encode_context.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/low_rank_choice.h"
 #include "encoder/rate/motion_alternatives.h"
@@ -96,14 +97,19 @@ struct GridStart {
   std::shared_ptr<const Traversal> traversal;
 };
 
-// The residual planner's options at opt's effort. Below the highest, frames are planned in
-// time order only: the hierarchical orders cost a whole plan each and rarely win by more
-// than a hair once the low-rank model predicts (closing notes of issue 36 give the figures).
-ResidualPlanOptions plan_options(const EncodeOptions& opt) {
-  ResidualPlanOptions po;
-  po.threads = opt.threads;
-  if (opt.effort < kMaxEffort) po.gop_sizes = {1};
-  return po;
+// The rate control's view of an encode of `anim` from `start`. Below the highest effort,
+// frames are planned in time order only: the hierarchical orders cost a whole plan each and
+// rarely win by more than a hair once the low-rank model predicts (closing notes of issue
+// 36 give the figures).
+EncodeContext context_of(const Animation& anim, const EncodeOptions& opt, const GridStart& start) {
+  EncodeContext c{anim.frames, start.rounded};
+  c.snap_distance = start.snap;
+  c.shared.weights_source = start.weights;
+  c.shared.traversal = start.traversal.get();
+  c.plan.threads = opt.threads;
+  if (opt.effort < kMaxEffort) c.plan.gop_sizes = {1};
+  c.write.connectivity = opt.connectivity;
+  return c;
 }
 
 // The encode without a PDE model: the residual layer alone, with a low-rank model where it
@@ -113,26 +119,18 @@ ResidualPlanOptions plan_options(const EncodeOptions& opt) {
 bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridStart& start, Model* m,
                   Model* residual_only, std::string* error, uint64_t* bytes = nullptr) {
   *m = start.model;
+  const EncodeContext context = context_of(anim, opt, start);
   std::vector<int32_t> q = start.rounded;
-  const ResidualPlanOptions po = plan_options(opt);
-  ResidualOptions ro;
-  ro.weights_source = start.weights;
-  ro.traversal = start.traversal.get();
-  const ResidualPlan plan = choose_chunked_plan(*m, anim.frames, start.snap, &q, ro, po);
-  m->residual.payload = encode_residuals(*m, q, plan, ro);
+  const ResidualPlan plan = choose_chunked_plan(*m, anim.frames, start.snap, &q, context.shared, context.plan);
+  m->residual.payload = encode_residuals(*m, q, plan, context.shared);
   if (m->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
   if (residual_only) *residual_only = *m;
-  WriteOptions wo;
-  wo.connectivity = opt.connectivity;
   LowRankChoiceOptions lro;
   lro.components = opt.low_rank;
   lro.first_frame_anchor = opt.low_rank_first_frame;
   lro.posed_anchors = opt.low_rank_poses;
-  lro.threads = opt.threads;
-  lro.weights = start.weights;
-  lro.traversal = start.traversal.get();
   LowRankChoiceReport rep;
-  if (!choose_low_rank(m, {plan, q}, anim.frames, start.rounded, start.snap, wo, lro, &rep, error)) return false;
+  if (!choose_low_rank(m, {plan, q}, context, lro, &rep, error)) return false;
   if (bytes) *bytes = rep.bytes;
   return true;
 }
@@ -239,10 +237,9 @@ bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const 
     report->fitted = estimate.motions;
     return true;
   }
-  const ResidualPlanOptions po = plan_options(opt);
   MotionChoiceOptions mco;
   mco.keep_all = opt.keep_all_motions;
-  return choose_motions(m, plain, anim.frames, start.rounded, start.snap, po, mco, report, error);
+  return choose_motions(m, plain, context_of(anim, opt, start), mco, report, error);
 }
 
 std::string format_number(double x) {
@@ -294,11 +291,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
   if (opt.chunk_frames == 0) {
-    ResidualOptions ro;
-    ro.weights_source = start.weights;
-    ro.traversal = start.traversal.get();
-    if (!choose_chunk_frames(&m, anim.frames, start.rounded, start.snap, ro, wo, plan_options(opt), out, error))
-      return false;
+    if (!choose_chunk_frames(&m, context_of(anim, opt, start), out, error)) return false;
   } else {
     *out = write_container(m, wo);
   }

@@ -81,9 +81,11 @@ TEST(LowRankChoice, ACountTheFirstBasisStepCutOffGetsATrial) {
   LowRankChoiceReport with, without;
   std::string err;
   Model rescued = p.model, plain = p.model;
-  ASSERT_TRUE(choose_low_rank(&rescued, {p.plan, p.coded}, anim.frames, p.rounded, p.snap, {}, lro, &with, &err)) << err;
+  EncodeContext context{anim.frames, p.rounded};
+  context.snap_distance = p.snap;
+  ASSERT_TRUE(choose_low_rank(&rescued, {p.plan, p.coded}, context, lro, &with, &err)) << err;
   lro.rescue_cut_counts = false;
-  ASSERT_TRUE(choose_low_rank(&plain, {p.plan, p.coded}, anim.frames, p.rounded, p.snap, {}, lro, &without, &err)) << err;
+  ASSERT_TRUE(choose_low_rank(&plain, {p.plan, p.coded}, context, lro, &without, &err)) << err;
   EXPECT_TRUE(with.rescued);
   EXPECT_FALSE(without.rescued);
   EXPECT_GT(with.components, 0u);

@@ -100,10 +100,11 @@ void spoil_odd_strips(Model* m, uint32_t first = 1) {
 }
 
 bool run_choice(Synthetic* s, int threads, MotionChoiceReport* rep) {
-  ResidualPlanOptions po;
-  po.threads = threads;
+  EncodeContext context{s->frames, s->rounded};
+  context.snap_distance = 0.5 * kStep;
+  context.plan.threads = threads;
   std::string err;
-  const bool ok = choose_motions(&s->model, s->plain, s->frames, s->rounded, 0.5 * kStep, po, {}, rep, &err);
+  const bool ok = choose_motions(&s->model, s->plain, context, {}, rep, &err);
   EXPECT_TRUE(ok) << err;
   return ok;
 }

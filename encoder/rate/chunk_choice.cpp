@@ -22,27 +22,24 @@ std::vector<uint32_t> candidate_lengths(uint32_t F) {
   return out;
 }
 
-// *trial's residual layer coded with chunks of K frames; its file.
-bool code_with_length(Model* trial, uint32_t K, const std::vector<std::vector<float>>& frames,
-                      const std::vector<int32_t>& rounded, double snap_distance, ResidualOptions ro,
-                      const std::vector<int32_t>* prediction, const WriteOptions& write_options,
-                      const ResidualPlanOptions& plan_options, std::vector<uint8_t>* file, std::string* error) {
+// *trial's residual layer coded with chunks of K frames (its Model predictions given or
+// null), planned with `plan`; its file.
+bool code_with_length(Model* trial, uint32_t K, const EncodeContext& context, const std::vector<int32_t>* prediction,
+                      const ResidualPlanOptions& plan, std::vector<uint8_t>* file, std::string* error) {
   trial->residual.chunk_frames = K;
+  ResidualOptions ro = context.shared;
   ro.model_prediction = prediction;
-  std::vector<int32_t> q = rounded;
-  const ResidualPlan plan = choose_chunked_plan(*trial, frames, snap_distance, &q, ro, plan_options);
-  trial->residual.payload = encode_residuals(*trial, q, plan, ro);
+  std::vector<int32_t> q = context.rounded;
+  const ResidualPlan chunked = choose_chunked_plan(*trial, context.frames, context.snap_distance, &q, ro, plan);
+  trial->residual.payload = encode_residuals(*trial, q, chunked, ro);
   if (trial->residual.payload.empty()) return fail(error, "internal error: the chunked residual plan is invalid");
-  *file = write_container(*trial, write_options);
+  *file = write_container(*trial, context.write);
   return true;
 }
 
 }  // namespace
 
-bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& frames,
-                         const std::vector<int32_t>& rounded, double snap_distance, const ResidualOptions& shared,
-                         const WriteOptions& write_options, const ResidualPlanOptions& plan_options,
-                         std::vector<uint8_t>* file, std::string* error) {
+bool choose_chunk_frames(Model* model, const EncodeContext& context, std::vector<uint8_t>* file, std::string* error) {
   const uint32_t F = model->meta.frame_count;
   std::vector<int32_t> prediction;
   if (has_model_prediction(*model) && !model_grid_prediction(*model, UINT64_MAX, &prediction, error)) return false;
@@ -52,17 +49,15 @@ bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& fr
   std::vector<std::vector<uint8_t>> files(lengths.size());
   const uint32_t current = std::min(std::max(model->residual.chunk_frames, 1u), F);
   // The lengths are coded side by side, sharing the threads; each writes its own slot.
-  ResidualPlanOptions each = plan_options;
-  each.threads = threads_per_job(plan_options.threads, lengths.size());
+  ResidualPlanOptions each = context.plan;
+  each.threads = threads_per_job(context.plan.threads, lengths.size());
   std::vector<std::string> errors(lengths.size());
-  parallel_for(lengths.size(), plan_options.threads, [&](size_t i) {
+  parallel_for(lengths.size(), context.plan.threads, [&](size_t i) {
     if (lengths[i] == current) {  // already coded so
-      files[i] = write_container(*model, write_options);
+      files[i] = write_container(*model, context.write);
       return;
     }
-    if (!code_with_length(&trials[i], lengths[i], frames, rounded, snap_distance, shared, predicted, write_options,
-                          each, &files[i], &errors[i]))
-      files[i].clear();
+    if (!code_with_length(&trials[i], lengths[i], context, predicted, each, &files[i], &errors[i])) files[i].clear();
   });
   for (size_t i = 0; i < lengths.size(); ++i)
     if (files[i].empty()) return fail(error, errors[i]);

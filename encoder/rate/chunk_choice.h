@@ -11,7 +11,7 @@
 #include "codec/common/model.h"
 #include "codec/common/predictors.h"
 #include "codec/compress/container_writer.h"
-#include "encoder/rate/residual_plan.h"
+#include "encoder/rate/encode_context.h"
 
 namespace dcurve {
 
@@ -23,12 +23,8 @@ constexpr uint32_t kMaxWholeClipFrames = 128;
 constexpr double kChunkSlack = 0.02;
 
 // Recodes model->residual (its grid, faces, curves and low-rank model kept) at each
-// candidate length from the grid values `rounded` (snapped again within snap_distance of
-// `frames`) with `plan_options`, and leaves the chosen one in *model, its file
-// (write_container with write_options) in *file.
-bool choose_chunk_frames(Model* model, const std::vector<std::vector<float>>& frames,
-                         const std::vector<int32_t>& rounded, double snap_distance, const ResidualOptions& shared,
-                         const WriteOptions& write_options, const ResidualPlanOptions& plan_options,
-                         std::vector<uint8_t>* file, std::string* error);
+// candidate length from the context's grid values, and leaves the chosen one in *model, its
+// file in *file.
+bool choose_chunk_frames(Model* model, const EncodeContext& context, std::vector<uint8_t>* file, std::string* error);
 
 }  // namespace dcurve

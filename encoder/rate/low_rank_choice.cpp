@@ -182,11 +182,11 @@ bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>&
 // Each step is a member; they share the inputs and what earlier steps found.
 class LowRankSearch {
  public:
-  LowRankSearch(Model* model, const PlannedResidual& planned, const std::vector<std::vector<float>>& frames,
-                const std::vector<int32_t>& rounded, double snap_distance, const WriteOptions& write_options,
+  LowRankSearch(Model* model, const PlannedResidual& planned, const EncodeContext& context,
                 const LowRankChoiceOptions& options, std::string* error)
-      : model_(model), planned_(planned), frames_(frames), rounded_(rounded), snap_(snap_distance),
-        write_options_(write_options), options_(options), error_(error),
+      : model_(model), planned_(planned), frames_(context.frames), rounded_(context.rounded),
+        snap_(context.snap_distance), write_options_(context.write), threads_(context.plan.threads),
+        shared_(context.shared), options_(options), error_(error),
         F_(model->meta.frame_count), n_(size_t(model->meta.vertex_count) * 3), forced_(options.components > 0) {}
 
   // False only on an internal error; *report as choose_low_rank fills it.
@@ -218,6 +218,8 @@ class LowRankSearch {
   const std::vector<int32_t>& rounded_;
   const double snap_;
   const WriteOptions& write_options_;
+  const int threads_;  // 0: all cores; the result never depends on it
+  ResidualOptions shared_;  // one traversal and the encode's weight tables for every walk
   const LowRankChoiceOptions& options_;
   std::string* error_;
   const uint32_t F_;
@@ -225,7 +227,6 @@ class LowRankSearch {
   const bool forced_;
 
   LowRankChoiceReport rep_;
-  ResidualOptions shared_;  // one traversal and the encode's weight tables for every walk
   Traversal owned_traversal_;
   std::vector<double> bits_without_;  // what the residual layer pays today, frame by frame
   std::vector<GridComponents> pcas_;  // built before any candidate points into it
@@ -258,8 +259,8 @@ void LowRankSearch::build_anchors() {
     std::vector<int32_t> average(n_);
     for (size_t i = 0; i < n_; ++i) average[i] = int32_t(std::lround(pcas_[0].mean[i]));
     const std::vector<int32_t> first(rounded_.begin(), rounded_.begin() + std::ptrdiff_t(n_));
-    if (anchor_bytes(*model_, first, options_.threads, shared_.traversal) <
-        anchor_bytes(*model_, average, options_.threads, shared_.traversal))
+    if (anchor_bytes(*model_, first, threads_, shared_.traversal) <
+        anchor_bytes(*model_, average, threads_, shared_.traversal))
       pcas_.push_back(grid_components(rounded_, F_, n_, max_components, 0));
   }
   posed_from_ = pcas_.size();
@@ -282,12 +283,12 @@ void LowRankSearch::build_sample() {
   // 14,304 bytes instead of 11,638, cantilever 1,730 instead of 1,504).
   screen_options_.spatial_modes = ~(1u << int(SpatialMode::Fit));
   screen_options_.gop_sizes = {1};
-  screen_options_.threads = options_.threads;
+  screen_options_.threads = threads_;
   // An odd stride: hierarchical coding orders make every power-of-two-th frame dearer.
   sample_ = sample_frames(*model_, frames_, rounded_, ((F_ + kScreenFrames - 1) / kScreenFrames) | 1);
   sample_scale_ = double(F_) / double(sample_.frames.size());
   // Every screening plan snaps the same frames on the same grid.
-  sample_runs_ = plan_axis_runs(sample_.model, sample_.input, snap_, options_.threads);
+  sample_runs_ = plan_axis_runs(sample_.model, sample_.input, snap_, threads_);
   screen_options_.axis_runs = &sample_runs_;
 }
 
@@ -299,7 +300,7 @@ bool LowRankSearch::screen(const GridComponents& pca, uint32_t K, double step, b
   Model trial = *model_;
   std::vector<int32_t> mean_and_basis;
   const std::vector<int32_t>& refit = pca.poses.empty() ? rounded_ : poses_.aligned;
-  if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), options_.threads, &trial, &refit,
+  if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), threads_, &trial, &refit,
                          &memos_[size_t(&pca - pcas_.data())], shared_.traversal, &mean_and_basis))
     return true;
   const double section = double(low_rank_bytes(trial).size());
@@ -525,7 +526,7 @@ bool LowRankSearch::worth_a_trial(const Candidate& c) const {
 bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* bytes) {
   ResidualPlanOptions trial_plan;
   trial_plan.gop_sizes = {1};
-  trial_plan.threads = options_.threads;
+  trial_plan.threads = threads_;
   const std::vector<uint32_t>& order_without = planned_.plan.chunks[0].order;
   if (order_without.size() > 2 && order_without[1] > 1) trial_plan.gop_sizes.push_back(order_without[1]);
   Model trial = *model_;
@@ -598,8 +599,7 @@ bool LowRankSearch::run(LowRankChoiceReport* report) {
     return true;
   }
   if (!forced_ && (F_ < 3 || double(F_) * F_ * double(n_) > kMaxGramWork)) return true;
-  shared_.weights_source = options_.weights;
-  shared_.traversal = options_.traversal;
+  shared_.model_prediction = nullptr;
   shared_.traversal = &traversal_for(*model_, shared_, &owned_traversal_);
   bits_without_ = frame_bits(*model_, planned_.values, planned_.plan, shared_);
   build_anchors();
@@ -623,10 +623,9 @@ bool LowRankSearch::run(LowRankChoiceReport* report) {
 
 }  // namespace
 
-bool choose_low_rank(Model* model, const PlannedResidual& planned, const std::vector<std::vector<float>>& frames,
-                     const std::vector<int32_t>& rounded, double snap_distance, const WriteOptions& write_options,
+bool choose_low_rank(Model* model, const PlannedResidual& planned, const EncodeContext& context,
                      const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error) {
-  LowRankSearch search(model, planned, frames, rounded, snap_distance, write_options, options, error);
+  LowRankSearch search(model, planned, context, options, error);
   return search.run(report);
 }
 

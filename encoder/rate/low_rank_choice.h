@@ -10,6 +10,7 @@
 #include "codec/common/predictors.h"
 #include "codec/common/residual.h"
 #include "codec/compress/container_writer.h"
+#include "encoder/rate/encode_context.h"
 
 namespace dcurve {
 
@@ -33,12 +34,6 @@ struct LowRankChoiceOptions {
   // step at coarser steps (upwards, while each saves at least half its section), and give
   // the best of them a trial of its own.
   bool rescue_cut_counts = true;
-  int threads = 0;  // 0: all cores; the result never depends on it
-  // The encode's shared spatial weight tables (may be null; the result never depends on it).
-  SpatialWeightsSource* weights = nullptr;
-  // The model's traversal as traversal_for builds it with `weights` (may be null: built
-  // here once; the result never depends on it).
-  const Traversal* traversal = nullptr;
 };
 
 struct LowRankChoiceReport {
@@ -57,14 +52,12 @@ struct PlannedResidual {
   const std::vector<int32_t>& values;
 };
 
-// `model` holds a finished encode without a low-rank model (residual payload coded, no PDE
-// motions), planned as `planned` says; `rounded` is the grid values before snapping
-// (frame-major), `frames` the input (model units) and `snap_distance` how far snapping may
-// move a value (model units). Screens low-rank models by a cheap estimate, encodes the
-// residual with the promising ones and keeps the smallest whole file in `model` (low_rank and
-// residual.payload replaced). False only on an internal error.
-bool choose_low_rank(Model* model, const PlannedResidual& planned, const std::vector<std::vector<float>>& frames,
-                     const std::vector<int32_t>& rounded, double snap_distance, const WriteOptions& write_options,
+// `model` holds a finished encode of the context's frames without a low-rank model (residual
+// payload coded, no PDE motions), planned as `planned` says. Screens low-rank models by a
+// cheap estimate, encodes the residual with the promising ones and keeps the smallest whole
+// file in `model` (low_rank and residual.payload replaced). The result never depends on the
+// context's threads, weight tables or traversal. False only on an internal error.
+bool choose_low_rank(Model* model, const PlannedResidual& planned, const EncodeContext& context,
                      const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error);
 
 }  // namespace dcurve

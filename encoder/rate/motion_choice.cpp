@@ -35,10 +35,8 @@ uint32_t count_motions(const Model& model) {
 
 }  // namespace
 
-bool choose_motions(Model* model, const Model& baseline, const std::vector<std::vector<float>>& frames,
-                    const std::vector<int32_t>& rounded, double snap_distance,
-                    const ResidualPlanOptions& plan_options, const MotionChoiceOptions& options,
-                    MotionChoiceReport* report, std::string* error) {
+bool choose_motions(Model* model, const Model& baseline, const EncodeContext& context,
+                    const MotionChoiceOptions& options, MotionChoiceReport* report, std::string* error) {
   MotionChoiceReport rep;
   rep.fitted = count_motions(*model);
   ValueCosts without;
@@ -52,12 +50,13 @@ bool choose_motions(Model* model, const Model& baseline, const std::vector<std::
     if (compression < 0) return false;
   }
   for (;;) {
-    std::vector<int32_t> prediction, q = rounded;
+    std::vector<int32_t> prediction, q = context.rounded;
     if (!stored_model_prediction(*model, &prediction, error)) return false;
     if (prediction.empty()) break;  // nothing left to plan with: the baseline stands
     ResidualOptions ro;
     ro.model_prediction = &prediction;
-    const ResidualPlan plan = choose_chunked_plan(*model, frames, snap_distance, &q, ro, plan_options);
+    const ResidualPlan plan =
+        choose_chunked_plan(*model, context.frames, context.snap_distance, &q, ro, context.plan);
     ++rep.plans;
     bool dropped = false;
     if (!options.keep_all && rep.plans <= options.max_screens) {

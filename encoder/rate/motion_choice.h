@@ -9,7 +9,7 @@
 
 #include "codec/common/model.h"
 #include "codec/common/residual.h"
-#include "encoder/rate/residual_plan.h"
+#include "encoder/rate/encode_context.h"
 
 namespace dcurve {
 
@@ -37,12 +37,10 @@ struct MotionChoiceReport {
 //   baseline: the finished encode of the same frames on the same grid without a PDE model
 //     (it may carry a low-rank model): the residual bits each value costs there are what a
 //     motion has to beat.
-//   frames: input positions, model units; rounded: grid values before snapping
-//     (frame-major); snap_distance: model units, how far snapping may move a value.
-// Deterministic for any plan_options.threads. False only on an internal error.
-bool choose_motions(Model* model, const Model& baseline, const std::vector<std::vector<float>>& frames,
-                    const std::vector<int32_t>& rounded, double snap_distance,
-                    const ResidualPlanOptions& plan_options, const MotionChoiceOptions& options,
-                    MotionChoiceReport* report, std::string* error);
+//   context: the frames, their grid values and how to plan (its shared tables unused: the
+//     model's own traversal is walked).
+// Deterministic for any context.plan.threads. False only on an internal error.
+bool choose_motions(Model* model, const Model& baseline, const EncodeContext& context,
+                    const MotionChoiceOptions& options, MotionChoiceReport* report, std::string* error);
 
 }  // namespace dcurve
