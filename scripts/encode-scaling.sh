@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
 # How encode time grows (issue 36): a built-in scene simulated at several frame counts and
-# encoded with this tree's default options, then a larger and a smaller scene at the same
-# frame count, then one input at 1 and at 2 threads. Prints seconds per run and the fitted
+# encoded with this tree's default options, then another scene (other vertex count) at the first
+# frame count, then the first of them at 1 and at 2 threads. Prints seconds per run and the fitted
 # exponent of time against frames and against vertices (least squares on log-log).
-#   scripts/encode-scaling.sh [--scene S=rope] [--small-scene S=rope-small]
+#   scripts/encode-scaling.sh [--scene S=rope] [--other-scene S=rope-small]
 #                             [--frames "25 50 100 200"] [--tolerance T=1e-3]
 # Work files go to out/encode-scaling/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scene=rope small=rope-small frame_counts="25 50 100 200" tolerance=1e-3
+scene=rope other=rope-small frame_counts="25 50 100 200" tolerance=1e-3
 while [ $# -gt 0 ]; do
   case "$1" in
     --scene) scene=$2; shift 2 ;;
-    --small-scene) small=$2; shift 2 ;;
+    --other-scene) other=$2; shift 2 ;;
     --frames) frame_counts=$2; shift 2 ;;
     --tolerance) tolerance=$2; shift 2 ;;
     *) echo "encode-scaling: unknown argument $1" >&2; exit 2 ;;
@@ -60,14 +60,14 @@ done
 echo "  exponent of time against frames: $(printf "%s" "$rows" | slope)"
 
 first=${frame_counts%% *}
-echo "encode time against vertices: $small and $scene (above) at $first frames"
-read -r s v f b e < <(encode "$(frames_of "$small" "$first")" "$work/$small-$first")
-printf "  %-12s %5d frames %7d vertices  %8.1f s  %8d B\n" "$small" "$f" "$v" "$s" "$b"
+echo "encode time against vertices: $other and $scene (above) at $first frames"
+read -r s v f b e < <(encode "$(frames_of "$other" "$first")" "$work/$other-$first")
+printf "  %-12s %5d frames %7d vertices  %8.1f s  %8d B\n" "$other" "$f" "$v" "$s" "$b"
 echo "  exponent of time against vertices: $(printf "%s\n%s\n" "$v $s" "$first_row" | slope)"
 
-echo "threads: $small at $first frames"
-read -r s1 _ _ b1 _ < <(encode "$(frames_of "$small" "$first")" "$work/$small-t1" --threads 1)
-read -r s2 _ _ b2 _ < <(encode "$(frames_of "$small" "$first")" "$work/$small-t2" --threads 2)
-same=$(cmp -s "$work/$small-t1.dcrv" "$work/$small-t2.dcrv" && echo "identical files" || echo "FILES DIFFER")
+echo "threads: $scene at $first frames"
+read -r s1 _ _ b1 _ < <(encode "$(frames_of "$scene" "$first")" "$work/$scene-t1" --threads 1)
+read -r s2 _ _ b2 _ < <(encode "$(frames_of "$scene" "$first")" "$work/$scene-t2" --threads 2)
+same=$(cmp -s "$work/$scene-t1.dcrv" "$work/$scene-t2.dcrv" && echo "identical files" || echo "FILES DIFFER")
 printf "  1 thread %.1f s, 2 threads %.1f s: %.2fx; %s (%d B)\n" "$s1" "$s2" "$(awk -v a="$s1" -v b="$s2" 'BEGIN { print a / b }')" "$same" "$b1"
 [ "$same" = "identical files" ]
