@@ -99,9 +99,9 @@ Action add_encode(CLI::App& app) {
       ->check(CLI::IsMember({"auto"}) | finite_range(1.0, 16.0))
       ->capture_default_str();
   app.add_option("--effort", o->effort,
-                 "Search effort: 2 tries two grids side by side and plans frames in time order, 1 encodes "
-                 "once on a grid 6x finer than the coarsest, 3 walks the grids by trial encodes (about four "
-                 "encodes) and plans every coding order. Lower is faster, higher finds the last percent")
+                 "Search effort with --grid auto: 2 tries two grids side by side, 1 encodes once on a grid 6x "
+                 "finer than the coarsest, 3 walks the grids by trial encodes (about four encodes). Lower is "
+                 "faster, higher finds the last percent")
       ->check(CLI::Range(kMinEffort, kMaxEffort))
       ->capture_default_str();
   app.add_option("--chunk-frames", o->chunk_frames,

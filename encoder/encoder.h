@@ -59,10 +59,9 @@ struct EncodeOptions {
   // plain encodes), else the coarsest safe grid made this many times finer, in [1, 16],
   // which skips the trials.
   double grid_refinement = 0;
-  // How hard the encoder searches, in [1, 3]. 3: the grid trials walk the refinements
-  // (about four whole encodes, with grid_refinement 0) and every coding order is planned.
-  // 2 (the default): two grids (3x and 8x) side by side, the smaller file wins, and frames
-  // are planned in time order only. 1: one grid 6x finer than the coarsest, time order.
+  // How hard the encoder searches for the grid when grid_refinement is 0, in [1, 3]. 3: the
+  // trials walk the refinements (about four whole encodes). 2 (the default): two grids (3x
+  // and 8x) side by side, the smaller file wins. 1: one grid 6x finer than the coarsest.
   // The low-rank choice runs in full at every level (encoder/rate/README.md).
   int effort = kDefaultEffort;
   // With a PDE model: keep every fitted motion even where it does not pay for its

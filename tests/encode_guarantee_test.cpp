@@ -144,9 +144,8 @@ TEST(Guarantee, ChosenGridEncodesLikeTheSameGridGiven) {
 }
 
 // Lower efforts encode the grids they name and nothing else: effort 1 is the file of a grid
-// 6x finer than the coarsest, effort 2 the smaller of 3x and 8x (the coarser of equals), each
-// planned as that effort plans a given grid; both keep the guarantee. Out-of-range efforts
-// are refused.
+// 6x finer than the coarsest, effort 2 the smaller of 3x and 8x (the coarser of equals); both
+// keep the guarantee. Out-of-range efforts are refused.
 TEST(Guarantee, LowerEffortsEncodeTheGridsTheyName) {
   const Animation anim = test::simulate_builtin("cantilever", 12);
   std::string err;

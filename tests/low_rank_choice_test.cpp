@@ -81,7 +81,7 @@ TEST(LowRankChoice, ACountTheFirstBasisStepCutOffGetsATrial) {
   LowRankChoiceReport with, without;
   std::string err;
   Model rescued = p.model, plain = p.model;
-  EncodeContext context{anim.frames, p.rounded};
+  EncodeContext context(anim.frames, p.rounded);
   context.snap_distance = p.snap;
   ASSERT_TRUE(choose_low_rank(&rescued, {p.plan, p.coded}, context, lro, &with, &err)) << err;
   lro.rescue_cut_counts = false;

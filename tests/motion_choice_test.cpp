@@ -100,7 +100,7 @@ void spoil_odd_strips(Model* m, uint32_t first = 1) {
 }
 
 bool run_choice(Synthetic* s, int threads, MotionChoiceReport* rep) {
-  EncodeContext context{s->frames, s->rounded};
+  EncodeContext context(s->frames, s->rounded);
   context.snap_distance = 0.5 * kStep;
   context.plan.threads = threads;
   std::string err;
