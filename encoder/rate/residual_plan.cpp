@@ -560,13 +560,13 @@ void cut_chunk(const Model& model, const std::vector<std::vector<float>>& frames
 
 // Plans one chunk on its own (its frames, values, predictions and snapping runs), on
 // `threads` threads, and writes its grid values back into *q.
+// `model` is the clip's model without its payload or low-rank model (what a chunk's plan
+// needs of it, copied once per chunk).
 void plan_chunk(const Model& model, const std::vector<std::vector<float>>& frames, double max_distance,
                 const ResidualOptions& options, const ResidualPlanOptions& po, ChunkSpan span, int threads,
                 std::vector<int32_t>* q, PredictorPlan* out) {
   ChunkInput in;
   in.model = model;
-  in.model.residual.payload.clear();
-  in.model.low_rank = LowRankModel();
   cut_chunk(model, frames, *q, options, po, span, &in);
   ResidualOptions chunk_options = options;
   chunk_options.model_prediction = options.model_prediction ? &in.prediction : nullptr;
@@ -595,11 +595,14 @@ ResidualPlan choose_chunked_plan(const Model& model, const std::vector<std::vect
   shared.traversal = &traversal_for(model, options, &owned);
   const uint32_t chunks = chunk_count(F, K);
   plan.chunks.resize(chunks);
+  Model lean = model;  // the basis and payload stay out of every chunk's copy
+  lean.residual.payload.clear();
+  lean.low_rank = LowRankModel();
   // Chunks are planned independently (format 3), side by side: each writes only its own
   // plan and frames, so the result does not depend on the thread count.
   const int each = threads_per_job(po.threads, chunks);
   parallel_for(chunks, po.threads, [&](size_t c) {
-    plan_chunk(model, frames, max_distance, shared, po, chunk_span(F, K, uint32_t(c)), each, q, &plan.chunks[c]);
+    plan_chunk(lean, frames, max_distance, shared, po, chunk_span(F, K, uint32_t(c)), each, q, &plan.chunks[c]);
   });
   return plan;
 }
