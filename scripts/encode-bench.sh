@@ -29,7 +29,7 @@ work=out/encode-bench
 mkdir -p "$work/frames" "$work/files"
 
 # This tree's encoder, and the baseline's from its own source tree (git archive: no worktree).
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=OFF >/dev/null
 cmake --build build -j"$jobs" --target dcurve >/dev/null
 new=build/cli/dcurve
 rev=$(git rev-parse --short "$baseline")

@@ -20,7 +20,7 @@ while [ $# -gt 0 ]; do
 done
 work=out/encode-scaling
 mkdir -p "$work"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=OFF >/dev/null
 cmake --build build -j"$(nproc 2>/dev/null || echo 2)" --target dcurve >/dev/null
 bin=build/cli/dcurve
 

@@ -8,7 +8,7 @@ scene=${DCURVE_SCENE:-rope-small}
 tolerance=${DCURVE_TOLERANCE:-1e-3}
 
 scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=OFF >/dev/null
 cmake --build build -j"$jobs" --target dcurve
 dcurve=build/cli/dcurve
 rm -rf out && mkdir -p out

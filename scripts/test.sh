@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The test command: installs dependencies, builds (Release), runs every test with ctest,
+# The test command: installs dependencies, builds and installs with the README's own commands
+# (Release, no unity batches), runs every test with ctest, builds the decoder-only variant,
 # builds the WebAssembly decoder and runs its Node and headless-Chromium tests (web/test.sh),
 # then does the same under AddressSanitizer + UndefinedBehaviorSanitizer, then fuzzes the
 # decoder and the input readers for a bounded time each when the fuzz script exists. Exits
@@ -10,16 +11,28 @@ jobs=$(nproc 2>/dev/null || echo 2)
 
 scripts/install-deps.sh
 
-echo "== Release build and tests"
-# Unity builds: a clean build on 2 cores takes about 60 % of the time of one file per compile.
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON >/dev/null
-cmake --build build -j"$jobs"
+echo "== The README's build and install, then the tests"
+# Exactly the commands of README.md's "Build and install" block, read from the README (one file
+# per compile: no unity batches, so a source that leans on a neighbour's includes fails here),
+# with HOME in a scratch folder so its `--prefix ~/.local` stays out of the user's home.
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+readme_build=$(sed -n '/^## Build and install/,/^## /p' README.md | sed -n '/^```sh$/,/^```$/p' | grep -v '^```')
+[ -n "$readme_build" ] || { echo "test.sh: no Build and install block in README.md" >&2; exit 1; }
+# A build folder left configured with unity batches by an older test.sh keeps them: clear that.
+if grep -qs '^CMAKE_UNITY_BUILD:BOOL=ON' build/CMakeCache.txt; then cmake -S . -B build -DCMAKE_UNITY_BUILD=OFF >/dev/null; fi
+HOME="$scratch" bash -euo pipefail -c "$readme_build"
+[ -x "$scratch/.local/bin/dcurve" ] || { echo "test.sh: the README's install put no bin/dcurve in its prefix" >&2; exit 1; }
 ctest --test-dir build --output-on-failure -j"$jobs"
+
+echo "== Decoder-only build (-DDCURVE_DECODER_ONLY=ON)"
+cmake -S . -B build-decoder-only -DCMAKE_BUILD_TYPE=Release -DDCURVE_DECODER_ONLY=ON >/dev/null
+cmake --build build-decoder-only -j"$jobs"
 
 echo "== WebAssembly decoder: build, Node and Chromium tests"
 DCURVE_WEB_REQUIRED=1 web/test.sh build
 
-echo "== ASan + UBSan build and tests"
+echo "== ASan + UBSan build and tests (-DDCURVE_TOOLS=OFF)"
 # -O1 -g1: sanitizers need no more. DCURVE_TOOLS=OFF: the libraries (codec, decoder, encoder,
 # corpus) and their tests only; the dcurve program and the bench baselines are thin layers on
 # them, tested in the Release run above, and compiling them (CLI11, json, Draco) took a third
