@@ -9,9 +9,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
 
+# Each phase prints the seconds since the start: CI's budget is 15 minutes for the whole run.
+phase() { echo "== [${SECONDS}s] $*"; }
+
 scripts/install-deps.sh
 
-echo "== The README's build and install, then the tests"
+phase "The README's build and install, then the tests"
 # Exactly the commands of README.md's "Build and install" block, read from the README (one file
 # per compile: no unity batches, so a source that leans on a neighbour's includes fails here),
 # with HOME in a scratch folder so its `--prefix ~/.local` stays out of the user's home.
@@ -25,14 +28,14 @@ HOME="$scratch" bash -euo pipefail -c "$readme_build"
 [ -x "$scratch/.local/bin/dcurve" ] || { echo "test.sh: the README's install put no bin/dcurve in its prefix" >&2; exit 1; }
 ctest --test-dir build --output-on-failure -j"$jobs"
 
-echo "== Decoder-only build (-DDCURVE_DECODER_ONLY=ON)"
+phase "Decoder-only build (-DDCURVE_DECODER_ONLY=ON)"
 cmake -S . -B build-decoder-only -DCMAKE_BUILD_TYPE=Release -DDCURVE_DECODER_ONLY=ON >/dev/null
 cmake --build build-decoder-only -j"$jobs"
 
-echo "== WebAssembly decoder: build, Node and Chromium tests"
+phase "WebAssembly decoder: build, Node and Chromium tests"
 DCURVE_WEB_REQUIRED=1 web/test.sh build
 
-echo "== ASan + UBSan build and tests (-DDCURVE_TOOLS=OFF)"
+phase "ASan + UBSan build and tests (-DDCURVE_TOOLS=OFF)"
 # -O1 -g1: sanitizers need no more. DCURVE_TOOLS=OFF: the libraries (codec, decoder, encoder,
 # corpus) and their tests only; the dcurve program and the bench baselines are thin layers on
 # them, tested in the Release run above, and compiling them (CLI11, json, Draco) took a third
@@ -54,9 +57,9 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-sanitize --output-on-failure -j"$jobs" -E "$(IFS='|'; echo "${release_only[*]}")"
 
 if [ -x scripts/fuzz.sh ]; then
-  echo "== Decoder fuzzing (bounded)"
+  phase "Decoder fuzzing (bounded)"
   scripts/fuzz.sh 30 build-fuzz decoder
-  echo "== Input reader fuzzing (bounded)"
+  phase "Input reader fuzzing (bounded)"
   scripts/fuzz.sh 30 build-fuzz reader
 fi
-echo "== All tests passed"
+phase "All tests passed"
