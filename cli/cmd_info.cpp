@@ -79,14 +79,10 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
   nlohmann::json js = nlohmann::json::array();
   const uint64_t connectivity = connectivity_bytes(sections);
   int face_layout = -1;
-  uint64_t face_header = 0;
   for (const auto& s : sections) {
     js.push_back({{"tag", s.tag}, {"offset", s.offset}, {"header_bytes", s.header_bytes}, {"required", s.required}, {"compressed", s.compressed},
                   {"stored_bytes", s.stored_bytes}, {"raw_bytes", s.raw_bytes}});
-    if (s.tag == "FACE") {
-      face_layout = s.face_layout;
-      face_header = s.header_bytes;
-    }
+    if (s.tag == "FACE") face_layout = s.face_layout;
   }
   std::vector<uint32_t> lengths;
   uint64_t closed = 0;
@@ -130,7 +126,7 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
           {"faces", faces},
           {"face_layout", layout_name(face_layout)},
           {"face_order", faces ? face_order_name(order.coder_order) : "none"},
-          {"coder_order_connectivity_bytes", faces ? face_header + order.coder_order_payload : 0},
+          {"coder_order_connectivity_bytes", order.coder_order_bytes},
           {"model", model},
           {"model_text", model_text(model, total, m, section_bytes(sections, "LRNK"))},
           {"face_bytes_per_triangle", faces ? double(connectivity) / double(faces) : 0.0},

@@ -237,10 +237,10 @@ std::string format_number(double x) {
 }
 
 // Which order the written FACE section holds, and what the coder's order would take.
-void report_face_order(const std::vector<uint32_t>& faces, const SectionInfo& face_section, EncodeReport* rep) {
+void report_face_order(const std::vector<uint32_t>& faces, EncodeReport* rep) {
   const FaceOrderUse use = face_order_use(faces);
   rep->faces_in_coder_order = use.coder_order;
-  rep->coder_order_connectivity_bytes = face_section.header_bytes + use.coder_order_payload;
+  rep->coder_order_connectivity_bytes = use.coder_order_bytes;
 }
 
 }  // namespace
@@ -322,12 +322,12 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   Model written;
   if (!read_container(out->data(), out->size(), &written, error, &sections)) return false;
   rep.connectivity_bytes = connectivity_bytes(sections);
+  if (rep.connectivity_bytes > 0) report_face_order(m.faces, &rep);
   rep.low_rank_components = m.low_rank.components;
   rep.chunk_frames = std::min(m.residual.chunk_frames, m.meta.frame_count);
   rep.inbetween = m.meta.inbetween;
   rep.grid_refinement = grid_refinement(m.residual.step, opt.tolerance * m.meta.diag);
   for (const SectionInfo& s : sections) {
-    if (s.tag == "FACE") report_face_order(m.faces, s, &rep);
     if (s.tag == "LRNK") rep.low_rank_bytes = s.stored_bytes + s.header_bytes;
     if (s.tag == "SEGS" && !m.segments.empty()) rep.model_bytes = s.raw_bytes;
   }

@@ -17,7 +17,7 @@ FaceOrderUse face_order_use(const std::vector<uint32_t>& faces) {
   if (faces.empty()) return use;
   const std::vector<uint32_t> trav = traversal_order(faces);
   use.coder_order = trav == faces;
-  use.coder_order_payload = face_payload_bytes(trav);
+  use.coder_order_bytes = face_section_bytes(trav);
   return use;
 }
 

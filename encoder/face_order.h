@@ -13,7 +13,7 @@ std::vector<uint32_t> smaller_face_order(const std::vector<uint32_t>& faces);
 
 struct FaceOrderUse {
   bool coder_order = false;           // the list is the face coder's traversal order
-  uint64_t coder_order_payload = 0;   // FACE payload bytes of that order of the same triangles
+  uint64_t coder_order_bytes = 0;     // FACE section (header included) of that order of the same triangles
 };
 
 // How `faces` (as a file stores them) relate to the coder's order. Costs one traversal and one
