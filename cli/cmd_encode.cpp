@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/decode_output.h"
+#include "cli/face_order_text.h"
 #include "cli/messages.h"
 #include "cli/number_range.h"
 #include "codec/common/inbetween.h"
@@ -50,7 +51,8 @@ Action add_encode(CLI::App& app) {
   struct Opts {
     std::string input, output;
     double tolerance = 1e-3;
-    bool json = false, no_connectivity = false, reorder_faces = false, keep_all_motions = false;
+    bool json = false, no_connectivity = false, keep_face_order = false, reorder_faces = false;
+    bool keep_all_motions = false;
     InputOptions input_options;
     int threads = 0, effort = EncodeOptions().effort;
     std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto", chunk_frames = "auto";
@@ -117,9 +119,13 @@ Action add_encode(CLI::App& app) {
   app.add_option("--curve-points", o->curve_points, "Target vertices per extracted curve")
       ->check(CLI::Range(2, 1000000))
       ->capture_default_str();
-  app.add_flag("--reorder-faces", o->reorder_faces,
-               "Store the triangles in the face coder's traversal order (same triangles, windings and vertex "
-               "ids, 1.5-5x smaller faces); default: the input's face list as given");
+  app.add_flag("--keep-face-order", o->keep_face_order,
+               "Keep the input's index buffer exactly: its triangle order and each triangle's first corner "
+               "(the faces then code 1.5-5x larger). Default: the same triangles, windings and vertex ids, in "
+               "the face coder's order");
+  // The default since the face coder's order became it; kept so scripts that asked for it
+  // still run (hidden from --help).
+  app.add_flag("--reorder-faces", o->reorder_faces, "Deprecated: the default")->group("");
   app.add_flag("--no-connectivity", o->no_connectivity, "Leave faces out of the file (the engine has the mesh)");
   app.add_option("--threads", o->threads, "Worker threads, 0 = all cores (output is the same for any count)")
       ->check(CLI::NonNegativeNumber);
@@ -132,6 +138,10 @@ Action add_encode(CLI::App& app) {
       std::fprintf(stderr, "dcurve encode: --fps must be a number\n");
       return 2;
     }
+    if (o->reorder_faces && o->keep_face_order) {
+      std::fprintf(stderr, "dcurve encode: --reorder-faces (the default, deprecated) contradicts --keep-face-order\n");
+      return 2;
+    }
     if (!check_output_file(o->output, &err)) return msg->error(err);
     if (!check_encode_output(o->input, o->input_options.rest_mesh, o->output, &err)) return msg->error(err);
     if (!load_animation_input(o->input, o->input_options, msg->progress("simulate"), &anim, &err))
@@ -142,7 +152,7 @@ Action add_encode(CLI::App& app) {
     EncodeOptions eo;
     eo.tolerance = o->tolerance;
     eo.connectivity = !o->no_connectivity;
-    eo.exact_face_order = !o->reorder_faces;
+    eo.exact_face_order = o->keep_face_order;
     eo.threads = o->threads;
     eo.model = o->model == "pde8"    ? ModelChoice::Pde8
                : o->model == "pde32" ? ModelChoice::Pde32
@@ -162,12 +172,17 @@ Action add_encode(CLI::App& app) {
     EncodeReport rep;
     if (!encode_animation(anim, eo, &bytes, &rep, &err)) return msg->error(o->input + ": " + err);
     if (!write_file_atomic(o->output, bytes.data(), bytes.size(), &err)) return msg->error(err);
+    if (eo.connectivity)
+      msg->detail("faces: " + face_order_text(anim.faces.size() / 3, rep.faces_in_coder_order, rep.connectivity_bytes,
+                                              rep.coder_order_connectivity_bytes));
     nlohmann::json j = {{"input", o->input},
                         {"output", o->output},
                         {"tolerance", o->tolerance},
                         {"bytes", rep.bytes},
                         {"motion_bytes", rep.motion_bytes},
                         {"connectivity_bytes", rep.connectivity_bytes},
+                        {"face_order", eo.connectivity ? face_order_name(rep.faces_in_coder_order) : "none"},
+                        {"coder_order_connectivity_bytes", rep.coder_order_connectivity_bytes},
                         {"vertices", rep.vertices},
                         {"frames", rep.frames},
                         {"segments", rep.segments},

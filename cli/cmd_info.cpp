@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/face_order_text.h"
 #include "codec/common/container_format.h"
 #include "codec/common/inbetween.h"
 #include "codec/common/residual.h"
 #include "codec/compress/low_rank_writer.h"
 #include "codec/decompress/container_reader.h"
 #include "decoder/dcurve.hpp"
+#include "encoder/face_order.h"
 #include "encoder/io/files.h"
 #include "encoder/rate/plan_report.h"
 
@@ -40,6 +43,32 @@ struct BasisUse {
             {"pde8_cases", {pde8_cases[0], pde8_cases[1], pde8_cases[2], pde8_cases[3]}}};
   }
 };
+
+// Which motion model the file carries, by name: "pde8", "pde32", "pde" (both kinds of
+// curves), "low_rank", or "none" (the residual layer's predictors alone).
+std::string model_name(const BasisUse& use, const Model& m) {
+  const bool pde8 = use.by_basis[1] > 0, pde32 = use.by_basis[2] > 0;
+  if (pde8 || pde32) return pde8 && pde32 ? "pde" : pde8 ? "pde8" : "pde32";
+  return m.low_rank.components > 0 ? "low_rank" : "none";
+}
+
+// The model in words a user reads: what it is and what it takes.
+std::string model_text(const std::string& name, const BasisUse& use, const Model& m, uint64_t low_rank_bytes) {
+  if (name == "low_rank")
+    return "low-rank basis of " + std::to_string(m.low_rank.components) + " components (" +
+           std::to_string(low_rank_bytes) + " bytes), from which the frames are predicted";
+  if (name == "none") return "none: each frame is predicted from decoded frames and mesh neighbours";
+  return "PDE curves (" + std::to_string(use.by_basis[1]) + " pde8 and " + std::to_string(use.by_basis[2]) +
+         " pde32 motions over " + std::to_string(m.segments.size()) + " time segments); in-betweens follow them";
+}
+
+// Bytes of the section `tag`, header included (0 when the file has none).
+uint64_t section_bytes(const std::vector<SectionInfo>& sections, const std::string& tag) {
+  uint64_t bytes = 0;
+  for (const auto& s : sections)
+    if (s.tag == tag) bytes += s.stored_bytes + s.header_bytes;
+  return bytes;
+}
 
 // Everything `dcurve info` reports, as one JSON object; the text output prints from it.
 
@@ -77,6 +106,9 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
   }
   const bool has_residual = m.residual.step > 0;
   nlohmann::json predictors = predictor_use(m);
+  const std::string model = model_name(total, m);
+  const FaceOrderUse order = face_order_use(m.faces);
+
   return {{"file", path},
           {"bytes", bytes.size()},
           {"version", std::to_string(h.version_major) + "." + std::to_string(h.version_minor)},
@@ -93,6 +125,10 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
           {"connectivity_bytes", connectivity},
           {"faces", faces},
           {"face_layout", layout_name(face_layout)},
+          {"face_order", faces ? face_order_name(order.coder_order) : "none"},
+          {"coder_order_connectivity_bytes", order.coder_order_bytes},
+          {"model", model},
+          {"model_text", model_text(model, total, m, section_bytes(sections, "LRNK"))},
           {"face_bytes_per_triangle", faces ? double(connectivity) / double(faces) : 0.0},
           {"curves",
            {{"count", lengths.size()},
@@ -138,7 +174,8 @@ std::string printable(const std::string& text) {
   return out;
 }
 
-void print_text(const nlohmann::json& j) {
+// What every user asks first: size, counts, tolerance, which model and which face layout.
+void print_summary(const nlohmann::json& j) {
   std::printf("%s: %llu bytes, .dcrv %s\n", j["file"].get<std::string>().c_str(),
               (unsigned long long)j["bytes"].get<uint64_t>(), j["version"].get<std::string>().c_str());
   std::printf("  %u vertices, %u frames at %.3g fps, units \"%s\"\n", j["vertices"].get<uint32_t>(),
@@ -146,10 +183,26 @@ void print_text(const nlohmann::json& j) {
   std::printf("  tolerance %.3g of L = %.6g; %.3f bits per vertex per frame; %s in-betweens\n",
               j["tolerance"].get<double>(), j["rest_diagonal"].get<double>(), j["bpvf"].get<double>(),
               j["inbetween"].get<std::string>().c_str());
-  std::printf("  motion %llu bytes, connectivity %llu bytes (%llu faces, %s layout, %.3f bytes/triangle)\n",
-              (unsigned long long)j["motion_bytes"].get<uint64_t>(),
-              (unsigned long long)j["connectivity_bytes"].get<uint64_t>(),
-              (unsigned long long)j["faces"].get<uint64_t>(), j["face_layout"].get<std::string>().c_str(),
+  std::printf("  model: %s\n", j["model_text"].get<std::string>().c_str());
+  if (j["face_order"] == "none")
+    std::printf("  faces: none stored (the engine supplies the mesh)\n");
+  else
+    std::printf("  faces: %s\n", face_order_text(j["faces"].get<uint64_t>(), j["face_order"] == "coder",
+                                                 j["connectivity_bytes"].get<uint64_t>(),
+                                                 j["coder_order_connectivity_bytes"].get<uint64_t>())
+                                     .c_str());
+  const auto& r = j["residual"];
+  if (r["present"].get<bool>())
+    std::printf("  residual layer: grid step %.6g, %llu payload bytes in %u chunks of %u frames\n",
+                r["grid_step"].get<double>(), (unsigned long long)r["payload_bytes"].get<uint64_t>(),
+                r["chunks"].get<uint32_t>(), r["chunk_frames"].get<uint32_t>());
+  else
+    std::printf("  no residual layer: positions come from the motion model alone\n");
+}
+
+// The curves and the PDE motions per segment (all Zero without a PDE model).
+void print_curves_and_motions(const nlohmann::json& j) {
+  std::printf("  FACE layout %s, %.3f bytes/triangle\n", j["face_layout"].get<std::string>().c_str(),
               j["face_bytes_per_triangle"].get<double>());
   const auto& c = j["curves"];
   std::printf("  %llu curves (%llu closed), length min %u / median %u / max %u, mean %.1f\n",
@@ -169,49 +222,53 @@ void print_text(const nlohmann::json& j) {
                 (unsigned long long)s["basis_use"]["zero"].get<uint64_t>(),
                 (unsigned long long)s["basis_use"]["pde8"].get<uint64_t>(),
                 (unsigned long long)s["basis_use"]["pde32"].get<uint64_t>());
-  const auto& r = j["residual"];
-  if (r["present"].get<bool>())
-  {
-    std::printf("  residual layer: grid step %.6g, %llu payload bytes in %u chunks of %u frames\n",
-                r["grid_step"].get<double>(), (unsigned long long)r["payload_bytes"].get<uint64_t>(),
-                r["chunks"].get<uint32_t>(), r["chunk_frames"].get<uint32_t>());
-    const auto& lr = j["low_rank"];
-    if (lr["components"].get<uint32_t>() > 0)
-      std::printf("  low-rank model (Model predictor): %u components, shift %u, mean shift %u, "
-                  "coefficient shifts %s, basis %llu bytes%s\n",
-                  lr["components"].get<uint32_t>(), lr["shift"].get<uint32_t>(), lr["mean_shift"].get<uint32_t>(),
-                  lr["coefficient_shifts"].empty() ? "none" : lr["coefficient_shifts"].dump().c_str(),
-                  (unsigned long long)lr["basis_payload_bytes"].get<uint64_t>(),
-                  lr["posed"].get<bool>()
-                      ? (", posed: frame poses in " + std::to_string(lr["pose_bytes"].get<uint64_t>()) + " bytes").c_str()
-                      : "");
-    const auto& p = r["predictors"];
-    if (!p.is_null()) {
-      std::printf("  predictors per frame and axis: %s; spatial corrections: %s; %s coding order\n",
-                  p["kind"].dump().c_str(), p["spatial"].dump().c_str(), p["coding_order"].get<std::string>().c_str());
-      std::printf("  clusters: %s of up to %s vertices; %s candidates over %s frames with several; "
-                  "per cluster and axis: %s; motion maps: %s\n",
-                  p["clusters"].dump().c_str(), p["cluster_size"].dump().c_str(), p["candidates"].dump().c_str(),
-                  p["clustered_frames"].dump().c_str(), p["cluster_kind"].dump().c_str(),
-                  p["motion_transforms"].dump().c_str());
-      std::vector<uint32_t> bytes = p["frame_stream_bytes"].get<std::vector<uint32_t>>();
-      if (!bytes.empty()) {
-        const uint32_t first = bytes[0];
-        std::sort(bytes.begin(), bytes.end());
-        std::printf("  residual stream bytes per frame: frame 0 %u; all frames min %u, median %u, max %u "
-                    "(--json lists them)\n",
-                    first, bytes.front(), bytes[bytes.size() / 2], bytes.back());
-      }
-    }
-  }
-  else
-    std::printf("  no residual layer: positions come from the motion model alone\n");
+}
+
+// The low-rank model's parameters and the residual layer's predictor choices.
+void print_residual_details(const nlohmann::json& j) {
+  const auto& lr = j["low_rank"];
+  if (lr["components"].get<uint32_t>() > 0)
+    std::printf("  low-rank model (Model predictor): %u components, shift %u, mean shift %u, "
+                "coefficient shifts %s, basis %llu bytes%s\n",
+                lr["components"].get<uint32_t>(), lr["shift"].get<uint32_t>(), lr["mean_shift"].get<uint32_t>(),
+                lr["coefficient_shifts"].empty() ? "none" : lr["coefficient_shifts"].dump().c_str(),
+                (unsigned long long)lr["basis_payload_bytes"].get<uint64_t>(),
+                lr["posed"].get<bool>()
+                    ? (", posed: frame poses in " + std::to_string(lr["pose_bytes"].get<uint64_t>()) + " bytes").c_str()
+                    : "");
+  const auto& p = j["residual"]["predictors"];
+  if (p.is_null()) return;
+  std::printf("  predictors per frame and axis: %s; spatial corrections: %s; %s coding order\n",
+              p["kind"].dump().c_str(), p["spatial"].dump().c_str(), p["coding_order"].get<std::string>().c_str());
+  std::printf("  clusters: %s of up to %s vertices; %s candidates over %s frames with several; "
+              "per cluster and axis: %s; motion maps: %s\n",
+              p["clusters"].dump().c_str(), p["cluster_size"].dump().c_str(), p["candidates"].dump().c_str(),
+              p["clustered_frames"].dump().c_str(), p["cluster_kind"].dump().c_str(),
+              p["motion_transforms"].dump().c_str());
+  std::vector<uint32_t> bytes = p["frame_stream_bytes"].get<std::vector<uint32_t>>();
+  if (bytes.empty()) return;
+  const uint32_t first = bytes[0];
+  std::sort(bytes.begin(), bytes.end());
+  std::printf("  residual stream bytes per frame: frame 0 %u; all frames min %u, median %u, max %u "
+              "(--json lists them)\n",
+              first, bytes.front(), bytes[bytes.size() / 2], bytes.back());
+}
+
+void print_sections(const nlohmann::json& j) {
   std::printf("  sections:\n");
   for (const auto& s : j["sections"])
     std::printf("    %s at %8llu  %-8s %-4s %10llu bytes stored, %10llu raw\n", s["tag"].get<std::string>().c_str(),
                 (unsigned long long)s["offset"].get<uint64_t>(), s["required"].get<bool>() ? "required" : "optional",
                 s["compressed"].get<bool>() ? "zstd" : "", (unsigned long long)s["stored_bytes"].get<uint64_t>(),
                 (unsigned long long)s["raw_bytes"].get<uint64_t>());
+}
+
+void print_text(const nlohmann::json& j, bool verbose) {
+  print_summary(j);
+  if (!verbose) return;
+  print_curves_and_motions(j);
+  if (j["residual"]["present"].get<bool>()) print_residual_details(j);
+  print_sections(j);
 }
 
 // Whether every frame decodes (decode's checks reach the chunks only when it evaluates them).
@@ -234,11 +291,14 @@ bool decodes_every_frame(const std::vector<uint8_t>& bytes, std::string* error) 
 Action add_info(CLI::App& app) {
   struct Opts {
     std::string input;
-    bool json = false;
+    bool json = false, verbose = false;
   };
   auto o = std::make_shared<Opts>();
   app.add_option("input", o->input, ".dcrv file")->required();
   app.add_flag("--json", o->json, "Print one JSON object on stdout");
+  app.add_flag("-v,--verbose", o->verbose,
+               "Also print the curves, PDE motions per segment, the residual layer's predictor choices and the "
+               "sections");
   return [o]() {
     std::vector<uint8_t> bytes;
     std::string err;
@@ -257,7 +317,7 @@ Action add_info(CLI::App& app) {
     if (o->json)  // units are bytes from the file: invalid UTF-8 becomes U+FFFD
       std::printf("%s\n", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
     else
-      print_text(j);
+      print_text(j, o->verbose);
     return 0;
   };
 }

@@ -21,7 +21,7 @@ void Messages::detail(const std::string& message) const {
 }
 
 std::function<void(double)> Messages::progress(const std::string& label) const {
-  return quiet_ ? std::function<void(double)>() : progress_bar(label);
+  return quiet_ ? std::function<void(double)>() : progress_bar(label, "dcurve " + command_ + ": ");
 }
 
 }  // namespace dcurve::cli

@@ -1,5 +1,5 @@
 // What a subcommand says: errors always (stderr, "dcurve <command>: " first), the summary
-// line unless -q, details with -v (stderr, prefixed), progress on terminals unless -q.
+// line unless -q, details with -v (stderr, prefixed), progress unless -q (cli/progress.h).
 #pragma once
 #include <CLI/CLI.hpp>
 
@@ -17,7 +17,7 @@ class Messages {
   // Prints the error and returns 1, the exit code of bad input or failure.
   int error(const std::string& message) const;
   void detail(const std::string& message) const;
-  // The progress callback for `label` (empty when quiet or not on a terminal).
+  // The progress callback for the stage `label` (empty when quiet).
   std::function<void(double)> progress(const std::string& label) const;
 
  private:

@@ -11,13 +11,13 @@
 #include "codec/common/model.h"
 #include "codec/common/residual.h"
 #include "codec/compress/container_writer.h"
-#include "codec/compress/faces_encoder.h"
 #include "codec/compress/residual_encoder.h"
 #include "codec/decompress/container_reader.h"
 #include "codec/decompress/model_prediction.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/curves/extract.h"
 #include "encoder/curves/report.h"
+#include "encoder/face_order.h"
 #include "encoder/rate/block_flags.h"
 #include "encoder/rate/inbetween_choice.h"
 #include "encoder/rate/chunk_choice.h"
@@ -32,17 +32,6 @@
 
 namespace dcurve {
 namespace {
-
-
-// The input's face order or the face coder's traversal order, whichever gives the smaller
-// FACE section (each with its best layout): traversal wins on irregular meshes (Compact
-// codes it 2-4x smaller than the input order), a regular grid's own order can beat it.
-// Comparing FACE sections, not whole files: the residual coder's neighbours also follow the
-// face order, but coding the residual twice to find out would double the encoding time.
-std::vector<uint32_t> smaller_face_order(const std::vector<uint32_t>& faces) {
-  std::vector<uint32_t> trav = traversal_order(faces);
-  return face_payload_bytes(trav) < face_payload_bytes(faces) ? trav : faces;
-}
 
 // What the decoder's float32 output can add to a vertex's error: a few roundings of the
 // largest coordinate.
@@ -247,6 +236,13 @@ std::string format_number(double x) {
   return buf;
 }
 
+// Which order the written FACE section holds, and what the coder's order would take.
+void report_face_order(const std::vector<uint32_t>& faces, EncodeReport* rep) {
+  const FaceOrderUse use = face_order_use(faces);
+  rep->faces_in_coder_order = use.coder_order;
+  rep->coder_order_connectivity_bytes = use.coder_order_bytes;
+}
+
 }  // namespace
 
 // The float32 rounding may take at most a quarter of the tolerance.
@@ -326,6 +322,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   Model written;
   if (!read_container(out->data(), out->size(), &written, error, &sections)) return false;
   rep.connectivity_bytes = connectivity_bytes(sections);
+  if (rep.connectivity_bytes > 0) report_face_order(m.faces, &rep);
   rep.low_rank_components = m.low_rank.components;
   rep.chunk_frames = std::min(m.residual.chunk_frames, m.meta.frame_count);
   rep.inbetween = m.meta.inbetween;

@@ -41,9 +41,10 @@ struct EncodeOptions {
   uint32_t segment_frames = 0;
   uint32_t curve_points = 64;   // target vertices per curve, >= 2
   bool connectivity = true;   // store faces in the file
-  // Keep the input's triangle order and corner rotation. Off: triangles are stored in the
-  // face coder's traversal order (same triangles, same winding, same vertex ids), which
-  // codes 1.5-5x smaller.
+  // Keep the input's index buffer exactly (triangle order and corner rotation). Off (the
+  // default): triangles are stored in the face coder's traversal order (same triangles,
+  // same winding, same vertex ids), which codes 1.5-5x smaller, or as given where that is
+  // smaller (encoder/face_order.h).
   bool exact_face_order = false;
   // Low-rank (PCA) model of the frames for the residual layer's Model predictor (LRNK):
   // -1 automatic (kept only where the file gets smaller), 0 off, 1..64 that many components
@@ -82,7 +83,9 @@ struct EncodeOptions {
 struct EncodeReport {
   uint64_t bytes = 0;
   uint64_t motion_bytes = 0;        // everything but the connectivity section
-  uint64_t connectivity_bytes = 0;
+  uint64_t connectivity_bytes = 0;   // the FACE section, header included
+  bool faces_in_coder_order = false; // the FACE section holds the face coder's order
+  uint64_t coder_order_connectivity_bytes = 0;  // what the FACE section would take in that order
   uint32_t vertices = 0, frames = 0, segments = 0;
   double bpvf = 0;                  // file bits / (vertices * frames)
   ErrorStats error;                 // measured by decoding the written bytes

@@ -171,6 +171,24 @@ TEST(CliIo, PointCacheThatDoesNotFitItsMeshIsRefused) {
   EXPECT_FALSE(fs::exists(dir / "out.dcrv"));
 }
 
+// Every second frame of a DCC's output: the step sets the file's frame rate; --fps wins.
+TEST(CliIo, FolderFrameStepSetsTheFrameRate) {
+  TempDir dir;
+  fs::create_directory(dir / "anim");
+  for (int i = 0; i < 4; ++i) write_triangle_obj(dir / ("anim/frame_0000" + std::to_string(2 * i) + ".obj"), 0.1 * i);
+  CommandResult r = run_cli("encode " + dir / "anim -o " + dir / "a.dcrv -q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(run_cli("info " + dir / "a.dcrv").output.find("4 frames at 15 fps"), std::string::npos);
+  r = run_cli("encode " + dir / "anim -o " + dir / "b.dcrv -q --fps 12");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(run_cli("info " + dir / "b.dcrv").output.find("4 frames at 12 fps"), std::string::npos);
+  write_triangle_obj(dir / "anim/frame_00007.obj", 0.7);
+  r = run_cli("encode " + dir / "anim -o " + dir / "c.dcrv");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("frame_00006.obj and frame_00007.obj are 1 frame apart"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "c.dcrv"));
+}
+
 TEST(CliIo, FolderFramesInNumberOrderAndGapsNamed) {
   TempDir dir;
   fs::create_directory(dir / "anim");

@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <array>
 #include <fstream>
+#include <regex>
+#include <sstream>
 #include <string>
 
 #include "encoder/io/files.h"
+#include "encoder/io/frames.h"
 #include "corpus/sim/simulation.h"
 #include "cli_util.h"
 #include "test_util.h"
@@ -33,6 +36,7 @@ TEST(Cli, BadUsageExitsTwo) {
   EXPECT_EQ(run_cli("encode x -o y --tolerance 7").exit_code, 2);          // out of range
   EXPECT_EQ(run_cli("encode x -o y --segment-frames often").exit_code, 2);  // neither auto nor a count
   EXPECT_EQ(run_cli("encode x -o y --effort 4").exit_code, 2);             // out of range
+  EXPECT_EQ(run_cli("encode x -o y --reorder-faces --keep-face-order").exit_code, 2);  // contradictory
   EXPECT_EQ(run_cli("decode a.dcrv -o d --frames 3 --t 0.5").exit_code, 2);  // exclusive options
 }
 
@@ -207,19 +211,29 @@ TEST(Cli, EncodeDecodeInfoEndToEnd) {
   Animation back;
   ASSERT_TRUE(read_frame_folder(dir / "out", &back, &err)) << err;
   ASSERT_EQ(back.frames.size(), anim.frames.size());
-  // Default: the input's face list as given, in its order and corner rotation.
-  EXPECT_EQ(back.faces, anim.faces);
-  // --reorder-faces: the same triangles with the same windings, in the face coder's order
-  // when that codes smaller. Only the faces matter here: no low-rank screening.
-  const std::string faces_only = " -o " + dir / "x.dcrv --reorder-faces --grid 1.5 --low-rank off --json";
-  CommandResult x = run_cli("encode " + dir / "in" + faces_only);
+  // Default: the same triangles, each with its winding (its corners rotated at most), in the
+  // face coder's order; the shuffled list is not that order.
+  EXPECT_EQ(canonical_triangles(back.faces), canonical_triangles(anim.faces));
+  EXPECT_NE(back.faces, anim.faces);
+  EXPECT_EQ(info["face_order"], "coder") << i.output;
+  // --keep-face-order: the exact index buffer, order and first corners included, at a cost
+  // that -v and info state. Only the faces matter here: no low-rank screening.
+  const std::string keep = " -o " + dir / "x.dcrv --keep-face-order --grid 1.5 --low-rank off -v";
+  CommandResult x = run_cli("encode " + dir / "in" + keep);
   ASSERT_EQ(x.exit_code, 0) << x.output;
-  EXPECT_LT(nlohmann::json::parse(x.output)["connectivity_bytes"].get<int>(),
-            nlohmann::json::parse(e.output)["connectivity_bytes"].get<int>());
+  EXPECT_NE(x.output.find("faces: 4802 triangles in the order given (the exact index buffer)"), std::string::npos)
+      << x.output;
   ASSERT_EQ(run_cli("decode " + dir / "x.dcrv -o " + dir / "xout --frames 1").exit_code, 0);
-  Animation reordered;
-  ASSERT_TRUE(read_frame_folder(dir / "xout", &reordered, &err)) << err;
-  EXPECT_EQ(canonical_triangles(reordered.faces), canonical_triangles(anim.faces));
+  Animation kept;
+  ASSERT_TRUE(read_frame_folder(dir / "xout", &kept, &err)) << err;
+  EXPECT_EQ(kept.faces, anim.faces);
+  CommandResult xi = run_cli("info " + dir / "x.dcrv --json");
+  ASSERT_EQ(xi.exit_code, 0) << xi.output;
+  const nlohmann::json kept_info = nlohmann::json::parse(xi.output);
+  EXPECT_EQ(kept_info["face_order"], "exact");
+  // What the coder's order would take is what the default file's FACE section takes.
+  EXPECT_EQ(kept_info["coder_order_connectivity_bytes"], info["connectivity_bytes"]) << xi.output;
+  EXPECT_GT(kept_info["connectivity_bytes"].get<int>(), info["connectivity_bytes"].get<int>());
   ASSERT_EQ(run_cli("decode " + dir / "c.dcrv -o " + dir / "one --t 0.5 --format ply").exit_code, 0);
   EXPECT_TRUE(std::filesystem::exists(dir / "one/frame_00000.ply"));
   // A PDE model whose motions do not pay leaves the file no larger than without one.
@@ -230,6 +244,58 @@ TEST(Cli, EncodeDecodeInfoEndToEnd) {
   EXPECT_LE(with["motions_kept"].get<int>(), with["motions_fitted"].get<int>());
   EXPECT_LE(with["bytes"].get<int>(), without["bytes"].get<int>());
   EXPECT_DOUBLE_EQ(without["grid_refinement"].get<double>(), 1.5);
+}
+
+// With stderr not a terminal (a pipe here), encode prints a plain line every interval with
+// the stage, the percent done and, once known, the time left; -q silences it.
+TEST(Cli, ProgressLinesWhenStderrIsAPipe) {
+  TempDir dir;
+  std::string err;
+  ASSERT_TRUE(write_frame_folder(dir / "in", simulate_builtin("cantilever", 12), "obj", &err)) << err;
+  const std::string args = "encode " + dir / "in" + " -o " + dir / "c.dcrv --threads 1";
+  CommandResult r = run_cli(args, 0.02);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::regex line(R"(^dcurve encode: encode (\d+)%, \d+ s(, about \d+ s left)?$)");
+  int lines = 0, last = -1;
+  bool monotonic = true;
+  std::istringstream text(r.output);
+  for (std::string l; std::getline(text, l);) {
+    std::smatch m;
+    if (!std::regex_match(l, m, line)) continue;
+    ++lines;
+    monotonic = monotonic && std::stoi(m[1]) >= last;
+    last = std::stoi(m[1]);
+  }
+  EXPECT_GE(lines, 2) << r.output;
+  EXPECT_TRUE(monotonic) << r.output;
+  EXPECT_EQ(last, 100) << r.output;  // the stage's end is in the log too
+  r = run_cli(args + " -q", 0.02);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output, "");
+}
+
+// `dcurve info` names the model and the face layout in words; the counts behind them come
+// with -v.
+TEST(Cli, InfoNamesTheModelAndFaceLayout) {
+  TempDir dir;
+  std::string err;
+  ASSERT_TRUE(write_frame_folder(dir / "in", simulate_builtin("cantilever", 8), "obj", &err)) << err;
+  const std::string in = "encode " + dir / "in" + " --grid 2 -q -o ";
+  ASSERT_EQ(run_cli(in + dir / "none.dcrv --low-rank off").exit_code, 0);
+  ASSERT_EQ(run_cli(in + dir / "lr.dcrv --low-rank 2").exit_code, 0);
+  ASSERT_EQ(run_cli(in + dir / "pde.dcrv --low-rank off --model pde8 --keep-all-motions").exit_code, 0);
+  CommandResult r = run_cli("info " + dir / "none.dcrv");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("model: none: each frame is predicted from decoded frames"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("in the face coder's order"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("motions:"), std::string::npos) << r.output;  // the counts only with -v
+  EXPECT_NE(run_cli("info -v " + dir / "none.dcrv").output.find("motions: "), std::string::npos);
+  r = run_cli("info " + dir / "lr.dcrv");
+  EXPECT_NE(r.output.find("model: low-rank basis of 2 components"), std::string::npos) << r.output;
+  r = run_cli("info " + dir / "pde.dcrv");
+  EXPECT_NE(r.output.find("model: PDE curves ("), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" pde8 and 0 pde32 motions"), std::string::npos) << r.output;
+  EXPECT_EQ(nlohmann::json::parse(run_cli("info --json " + dir / "pde.dcrv").output)["model"], "pde8");
 }
 
 }  // namespace

@@ -32,8 +32,10 @@ class Interop : public ::testing::Test {
     ASSERT_TRUE(write_exchange(dir_ / "in.bin", anim_));
   }
 
+  // With the exact index buffer kept, so every output must carry the input's face list.
   void encode(const std::string& input, const std::string& extra = "") {
-    CommandResult r = run_cli("encode " + input + " -o " + dir_ / "x.dcrv --tolerance 1e-3 --grid 2 --low-rank off -q" + extra);
+    CommandResult r = run_cli("encode " + input + " -o " + dir_ / "x.dcrv --tolerance 1e-3 --grid 2 --low-rank off "
+                              "--keep-face-order -q" + extra);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(r.output, "");  // -q: nothing on success
   }

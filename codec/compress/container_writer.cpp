@@ -183,4 +183,10 @@ uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptio
   return stored_form(face_bytes(faces, options), options.zstd_level, &unused).size();
 }
 
+uint64_t face_section_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
+  ByteWriter section;
+  put_section(section, kFaces, false, face_bytes(faces, options), options.zstd_level);
+  return section.data().size();
+}
+
 }  // namespace dcurve

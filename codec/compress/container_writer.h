@@ -29,6 +29,8 @@ struct WriteOptions {
 // Payload bytes the FACE section of write_container(model, options) would store for
 // model.faces = faces (section header not included): lets an encoder compare face orders.
 uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options = {});
+// The whole FACE section, header included, as write_container would store it.
+uint64_t face_section_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options = {});
 
 // Serializes `model` (which must pass validate_model). The RESI section is written only when
 // model.residual.step > 0; FACE only when options.connectivity and faces are present.

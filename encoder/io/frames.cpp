@@ -97,7 +97,8 @@ bool validate_animation(const Animation& anim, std::string* error) {
   return true;
 }
 
-bool list_frame_files(const std::string& dir, std::vector<std::string>* files, std::string* error) {
+bool list_frame_files(const std::string& dir, std::vector<std::string>* files, std::string* error,
+                      long long* frame_step) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return fail(error, dir + ": not a folder");
   std::vector<fs::path> paths;
@@ -107,15 +108,17 @@ bool list_frame_files(const std::string& dir, std::vector<std::string>* files, s
   }
   if (ec) return fail(error, dir + ": " + ec.message());
   if (paths.empty()) return fail(error, dir + ": no .obj, .ply or .off frames found");
-  if (!order_frame_files(&paths, error)) return false;
+  if (!order_frame_files(&paths, error, frame_step)) return false;
   files->assign(paths.begin(), paths.end());
   return true;
 }
 
 bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error) {
   std::vector<std::string> files;
-  if (!list_frame_files(dir, &files, error)) return false;
+  long long step = 1;
+  if (!list_frame_files(dir, &files, error, &step)) return false;
   *anim = Animation{};
+  anim->frame_rate = kFolderFrameRate / double(step);
   for (size_t f = 0; f < files.size(); ++f) {
     std::vector<float> xyz;
     std::vector<uint32_t> faces;

@@ -22,12 +22,19 @@ bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uin
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
                 const std::vector<uint32_t>& faces, std::string* error);
 
+// Folders carry no frame rate: their frame numbers count at this rate, so a folder whose
+// numbers step by 2 holds 15 frames per second.
+constexpr double kFolderFrameRate = 30.0;
+
 // The .obj/.ply/.off files of `dir` in frame-number order (encoder/io/frame_order.h), paths
-// with `dir` in front; false when there are none or the order is ambiguous.
-bool list_frame_files(const std::string& dir, std::vector<std::string>* files, std::string* error);
+// with `dir` in front, and the step between their numbers; false when there are none, the
+// order is ambiguous or the step is irregular.
+bool list_frame_files(const std::string& dir, std::vector<std::string>* files, std::string* error,
+                      long long* frame_step = nullptr);
 
 // Reads every .obj/.ply/.off file of `dir` in frame-number order. All frames must have the same
-// vertex count and face list, and finite coordinates.
+// vertex count and face list, and finite coordinates. The frame rate is kFolderFrameRate over
+// the step between the frame numbers.
 bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error);
 
 // Writes DIR/frame_00000.EXT, frame_00001.EXT, ... (EXT = "obj" or "ply"); creates DIR.
