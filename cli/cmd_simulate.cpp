@@ -4,6 +4,7 @@
 #include "cli/commands.h"
 #include "cli/messages.h"
 #include "corpus/sim/scene.h"
+#include "encoder/io/frames.h"
 
 namespace dcurve::cli {
 

@@ -21,10 +21,10 @@ inline std::string cli_program() {
   return other && *other ? other : DCURVE_CLI;
 }
 
-// Runs `args` with the dcurve CLI through the shell.
-inline CommandResult run_cli(const std::string& args) {
+// Runs the shell command `command` (stdout and stderr captured).
+inline CommandResult run_cli_command(const std::string& command) {
   CommandResult r;
-  std::string cmd = cli_program() + " " + args + " 2>&1";
+  std::string cmd = "(" + command + ") 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf;
@@ -34,5 +34,8 @@ inline CommandResult run_cli(const std::string& args) {
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+// Runs `args` with the dcurve CLI through the shell.
+inline CommandResult run_cli(const std::string& args) { return run_cli_command(cli_program() + " " + args); }
 
 }  // namespace dcurve::test
