@@ -205,7 +205,7 @@ TEST(HostileGltfValidation, ByteStrideMustHoldAnElementAndBeAligned) {
     j["bufferViews"][0]["byteStride"] = stride;
     j["bufferViews"][0]["byteLength"] = 36;
     const std::string err = read_gltf(dir / "t.gltf", j);
-    EXPECT_TRUE(contains(err, "byteStride " + std::to_string(stride))) << err;
+    EXPECT_TRUE(contains(err, "byteStride") && contains(err, std::to_string(stride))) << err;
   }
 }
 

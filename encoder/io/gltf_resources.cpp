@@ -41,6 +41,17 @@ bool is_inside(const fs::path& path, const fs::path& dir) {
   return true;
 }
 
+// Whether `path` lies in the glTF's folder `base` or one of `allowed_dirs`.
+bool allowed_place(const fs::path& path, const fs::path& base, const std::vector<std::string>& allowed_dirs) {
+  if (is_inside(path, base)) return true;
+  for (const std::string& dir : allowed_dirs) {
+    std::error_code ec;
+    const fs::path d = fs::canonical(dir, ec);
+    if (!ec && is_inside(path, d)) return true;
+  }
+  return false;
+}
+
 // The accessors' buffers: those of the bufferViews an accessor (or its sparse part) names.
 std::set<int64_t> used_buffers(const json& doc) {
   std::set<int64_t> views, buffers;
@@ -153,16 +164,13 @@ bool resolve_resource(const std::string& gltf_dir, const std::vector<std::string
   std::error_code ec;
   const fs::path base = fs::canonical(gltf_dir.empty() ? "." : gltf_dir, ec);
   if (ec) return fail(error, "the glTF's folder: " + ec.message());
-  const fs::path real = fs::canonical(base / name, ec);
-  if (ec) return fail(error, quoted + ": " + (ec == std::errc::no_such_file_or_directory ? "no such file in the glTF's folder" : ec.message()));
-  bool allowed = is_inside(real, base);
-  for (const std::string& dir : allowed_dirs) {
-    const fs::path d = fs::canonical(dir, ec);
-    allowed = allowed || (!ec && is_inside(real, d));
-  }
-  if (!allowed)
-    return fail(error, quoted + " leads outside the glTF's folder (" + quote_file_text(real.string()) +
+  // Checked as written (no folder of the path needs to exist) and again with links followed.
+  const fs::path lexical = (base / name).lexically_normal();
+  const fs::path real = fs::canonical(lexical, ec);
+  if (!allowed_place(lexical, base, allowed_dirs) || (!ec && !allowed_place(real, base, allowed_dirs)))
+    return fail(error, quoted + " leads outside the glTF's folder (" + quote_file_text((ec ? lexical : real).string()) +
                            "); dcurve reads resources only from that folder (widen with --allow-resources-outside DIR)");
+  if (ec) return fail(error, quoted + ": " + (ec == std::errc::no_such_file_or_directory ? "no such file in the glTF's folder" : ec.message()));
   *path = real.string();
   return true;
 }
