@@ -67,7 +67,7 @@ bool json_text(const std::vector<uint8_t>& bytes, bool binary, std::string* text
     std::memcpy(&type, &bytes[16], 4);
   }
   if (bytes.size() < 20 || std::memcmp(bytes.data(), "glTF", 4) != 0 || type != 0x4E4F534A || length > bytes.size() - 20)
-    return fail(error, "not a glTF binary file (no glTF header and JSON chunk)");
+    return fail(error, "cannot read glTF: not a glTF binary file (no glTF header and JSON chunk)");
   text->assign(bytes.begin() + 20, bytes.begin() + 20 + length);
   return true;
 }

@@ -198,7 +198,7 @@ bool check_declared_size(const tinygltf::Model& model, const tinygltf::Mesh& mes
   const long double bytes = 12 * vertices * (arrays + keys) + 4.0L * accessor_count(model, p.indices) +
                             4.0L * (keys + accessor_count(model, s.output));
   if (bytes > 1e19L || !budget.fits(uint64_t(bytes), 1))
-    return fail(error, "its accessors declare " + std::to_string(uint64_t(vertices)) + " vertices, " +
+    return fail(error, "POSITION, the morph targets and the keys declare " + std::to_string(uint64_t(vertices)) + " vertices, " +
                            std::to_string(uint64_t(arrays - 1)) + " morph targets and " + std::to_string(uint64_t(keys)) +
                            " keys: more than the memory limit allows (--max-memory)");
   return true;

@@ -178,7 +178,7 @@ bool resolve_resource(const std::string& gltf_dir, const std::vector<std::string
 bool plan_gltf_buffers(const std::string& text, const std::string& gltf_dir, const ReadLimits& limits,
                        MemoryBudget* budget, BufferPlan* plan, std::string* error) {
   const json doc = json::parse(text, nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) return fail(error, "not a glTF file: its JSON is malformed");
+  if (doc.is_discarded() || !doc.is_object()) return fail(error, "cannot read glTF: its JSON is malformed");
   if (!check_image_data_uris(doc, error)) return false;
   if (!doc.contains("buffers")) return true;
   const json& buffers = doc["buffers"];
