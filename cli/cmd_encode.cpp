@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <new>
 
 #include "cli/commands.h"
 #include "cli/decode_output.h"
@@ -14,6 +15,7 @@
 #include "encoder/encoder.h"
 #include "corpus/input.h"
 #include "encoder/io/files.h"
+#include "encoder/io/frame_times.h"
 #include "corpus/sim/scene.h"
 
 namespace dcurve::cli {
@@ -45,6 +47,26 @@ bool check_encode_output(const std::string& input, const std::string& rest_mesh,
   return false;
 }
 
+// Reads and encodes `input`; an allocation that fails anywhere (worker threads included,
+// encoder/parallel.h) is an error naming the input, not an abort.
+bool read_and_encode(const std::string& input, const InputOptions& io, EncodeOptions eo, const Messages& msg,
+                     Animation* anim, std::vector<uint8_t>* bytes, EncodeReport* rep, std::string* err) {
+  const char* stage = "reading it";
+  try {
+    if (!load_animation_input(input, io, msg.progress("simulate"), anim, err)) return false;
+    msg.detail("read " + std::to_string(anim->frames.size()) + " frames of " + std::to_string(anim->vertex_count) +
+               " vertices, " + std::to_string(anim->faces.size() / 3) + " triangles, " +
+               std::to_string(anim->frame_rate) + " fps from " + input);
+    stage = "encoding it";
+    eo.progress = msg.progress("encode");
+    if (encode_animation(*anim, eo, bytes, rep, err)) return true;
+    *err = input + ": " + *err;
+  } catch (const std::bad_alloc&) {
+    *err = input + ": out of memory while " + stage + " (--max-memory bounds what the readers allocate)";
+  }
+  return false;
+}
+
 }  // namespace
 
 Action add_encode(CLI::App& app) {
@@ -72,7 +94,16 @@ Action add_encode(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--fps", o->input_options.fps,
                  "Frames per second (default: the input's own rate where it has one, else 30)")
-      ->check(CLI::Range(1e-3, 1e6));
+      ->check(CLI::Range(kMinFrameRate, kMaxFrameRate));
+  app.add_option("--max-memory", o->input_options.limits.max_memory,
+                 "Memory the input readers may allocate, bytes (suffixes KB, MB, GB, KiB, MiB, GiB); every count a "
+                 "file declares is checked against it before allocating. Default: half the physical memory, at most 4 GiB")
+      ->transform(CLI::AsSizeValue(false))
+      ->check(CLI::Range(uint64_t(1) << 20, UINT64_MAX));
+  app.add_option("--allow-resources-outside", o->input_options.limits.resource_dirs,
+                 "A folder besides the glTF's own that its buffer uris may name (repeatable); by default a glTF reads "
+                 "only files inside its own folder")
+      ->check(CLI::ExistingDirectory);
   app.add_option("-o,--output", o->output, "Output .dcrv file")->required();
   app.add_option("--tolerance", o->tolerance, "Max error, fraction of the rest-pose bounding-box diagonal")
       ->check(finite_range(kMinTolerance, 0.5))
@@ -144,11 +175,6 @@ Action add_encode(CLI::App& app) {
     }
     if (!check_output_file(o->output, &err)) return msg->error(err);
     if (!check_encode_output(o->input, o->input_options.rest_mesh, o->output, &err)) return msg->error(err);
-    if (!load_animation_input(o->input, o->input_options, msg->progress("simulate"), &anim, &err))
-      return msg->error(err);
-    msg->detail("read " + std::to_string(anim.frames.size()) + " frames of " + std::to_string(anim.vertex_count) +
-                " vertices, " + std::to_string(anim.faces.size() / 3) + " triangles, " +
-                std::to_string(anim.frame_rate) + " fps from " + o->input);
     EncodeOptions eo;
     eo.tolerance = o->tolerance;
     eo.connectivity = !o->no_connectivity;
@@ -167,10 +193,9 @@ Action add_encode(CLI::App& app) {
     Inbetween forced;
     eo.inbetween = inbetween_from_name(o->inbetween.c_str(), &forced) ? int(forced) : -1;
     eo.curve_points = o->curve_points;
-    eo.progress = msg->progress("encode");
     std::vector<uint8_t> bytes;
     EncodeReport rep;
-    if (!encode_animation(anim, eo, &bytes, &rep, &err)) return msg->error(o->input + ": " + err);
+    if (!read_and_encode(o->input, o->input_options, eo, *msg, &anim, &bytes, &rep, &err)) return msg->error(err);
     if (!write_file_atomic(o->output, bytes.data(), bytes.size(), &err)) return msg->error(err);
     if (eo.connectivity)
       msg->detail("faces: " + face_order_text(anim.faces.size() / 3, rep.faces_in_coder_order, rep.connectivity_bytes,

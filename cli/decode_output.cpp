@@ -173,6 +173,12 @@ OutputKind output_kind(const std::string& path) {
 }
 
 std::unique_ptr<FrameSink> open_output(const OutputSpec& spec, std::string* error) {
+  // The readers' rule (encoder/io/frames.h): no output holds a face they would refuse.
+  if (const size_t bad = find_degenerate_triangle(spec.faces); bad != SIZE_MAX) {
+    *error = spec.path + ": the file's triangle " + std::to_string(bad) +
+             " uses a vertex twice; dcurve writes no degenerate triangle";
+    return nullptr;
+  }
   switch (output_kind(spec.path)) {
     case OutputKind::Mesh:
       if (!check_output_file(spec.path, error)) return nullptr;

@@ -34,11 +34,12 @@ bool load_animation_input(const std::string& input, bool allow_builtin, const st
 namespace {
 
 // A point cache's positions with the faces of its rest mesh.
-bool load_point_cache(const std::string& input, const std::string& rest_mesh, Animation* anim, std::string* error) {
+bool load_point_cache(const std::string& input, const std::string& rest_mesh, uint64_t max_memory, Animation* anim,
+                      std::string* error) {
   if (rest_mesh.empty())
     return fail(error, input + ": a point cache holds positions only: give the faces with --mesh REST.obj");
   PointCacheInfo info;
-  if (!read_point_cache(input, anim, &info, error)) return false;
+  if (!read_point_cache(input, anim, &info, error, max_memory)) return false;
   std::vector<float> rest;
   if (!read_mesh(rest_mesh, &rest, &anim->faces, error)) return false;
   if (rest.size() != size_t(anim->vertex_count) * 3)
@@ -58,9 +59,9 @@ bool load_animation_input(const std::string& input, const InputOptions& options,
   if (options.gltf_mesh >= 0 && !is_gltf_path(input)) return fail(error, input + ": --gltf-mesh is for glTF files only");
   bool ok;
   if (cache)
-    ok = load_point_cache(input, options.rest_mesh, anim, error);
+    ok = load_point_cache(input, options.rest_mesh, options.limits.max_memory, anim, error);
   else if (is_gltf_path(input))
-    ok = read_gltf_animation(input, options.gltf_mesh, anim, error);
+    ok = read_gltf_animation(input, options.gltf_mesh, anim, error, options.limits);
   else
     ok = load_animation_input(input, false, progress, anim, error);
   if (ok && options.fps > 0) anim->frame_rate = options.fps;

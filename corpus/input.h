@@ -5,6 +5,7 @@
 #include <string>
 
 #include "encoder/io/frames.h"
+#include "encoder/io/read_limits.h"
 
 namespace dcurve {
 
@@ -19,6 +20,7 @@ struct InputOptions {
   std::string rest_mesh;  // the faces of a point cache (.pc2, .mdd), whose vertex count must match
   int gltf_mesh = -1;     // which mesh of a glTF file (-1: the file must hold one)
   double fps = 0;
+  ReadLimits limits;      // memory and glTF resource folders (glTF and point caches)
 };
 
 // As above, and also a glTF file (.gltf, .glb) or a point cache with its rest mesh.

@@ -21,13 +21,13 @@ inline std::string cli_program() {
   return other && *other ? other : DCURVE_CLI;
 }
 
-// Runs `args` with the dcurve CLI through the shell. stderr is a pipe here, where the CLI
-// prints a progress line every few seconds (cli/progress.h): every `progress_seconds`, by
-// default so rarely that the output holds only what the command says.
-inline CommandResult run_cli(const std::string& args, double progress_seconds = 1e6) {
+// Runs the shell command `command` (stdout and stderr captured). stderr is a pipe here, where
+// the CLI prints a progress line every few seconds (cli/progress.h): every `progress_seconds`,
+// by default so rarely that the output holds only what the command says.
+inline CommandResult run_cli_command(const std::string& command, double progress_seconds = 1e6) {
   CommandResult r;
-  const std::string cmd = "DCURVE_PROGRESS_INTERVAL=" + std::to_string(progress_seconds) + " " + cli_program() + " " +
-                          args + " 2>&1";
+  const std::string cmd =
+      "(export DCURVE_PROGRESS_INTERVAL=" + std::to_string(progress_seconds) + "; " + command + ") 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf;
@@ -36,6 +36,11 @@ inline CommandResult run_cli(const std::string& args, double progress_seconds = 
   int status = pclose(p);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+// Runs `args` with the dcurve CLI through the shell.
+inline CommandResult run_cli(const std::string& args, double progress_seconds = 1e6) {
+  return run_cli_command(cli_program() + " " + args, progress_seconds);
 }
 
 }  // namespace dcurve::test

@@ -1,11 +1,13 @@
 #include "corpus/sim/scene.h"
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <set>
+#include <vector>
 
 #include "corpus/scenes.h"
+#include "encoder/io/files.h"
 
 namespace dcurve {
 
@@ -169,12 +171,10 @@ bool scene_from_json(const nlohmann::json& j, const std::string& base_dir, Scene
 }
 
 bool load_scene_file(const std::string& path, Scene* scene, std::string* error) {
-  std::ifstream in(path);
-  if (!in) {
-    *error = path + ": cannot open scene file";
-    return false;
-  }
-  nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  // read_file refuses a FIFO or device without waiting on it; a scene is a few KB.
+  std::vector<uint8_t> bytes;
+  if (!read_file(path, &bytes, error, uint64_t(64) << 20)) return false;
+  nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, /*allow_exceptions=*/false);
   if (j.is_discarded()) {
     *error = path + ": not valid JSON";
     return false;

@@ -10,8 +10,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <random>
 
 #include "codec/common/error.h"
@@ -72,19 +70,68 @@ std::string lowercase_extension(const std::string& path) {
   return e;
 }
 
-bool read_file(const std::string& path, std::vector<uint8_t>* bytes, std::string* error) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    if (error) *error = path + ": is a folder, not a file";
-    return false;
+const char* file_type_name(unsigned st_mode) {
+  return S_ISREG(st_mode)                        ? "a regular file"
+         : S_ISLNK(st_mode)                      ? "a symbolic link"
+         : S_ISDIR(st_mode)                      ? "a folder"
+         : S_ISFIFO(st_mode)                     ? "a FIFO"
+         : S_ISCHR(st_mode) || S_ISBLK(st_mode) ? "a device"
+         : S_ISSOCK(st_mode)                     ? "a socket"
+                                                 : "not a regular file";
+}
+
+bool check_input_file(const std::string& path, std::string* error) {
+  struct stat st;
+  if (stat(path.c_str(), &st) != 0) {
+    if (errno == ENOENT) return fail(error, path + ": no such file");
+    return fail(error, path + ": cannot open: " + std::strerror(errno));
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (error) *error = path + ": cannot open: " + std::strerror(errno);
-    return false;
+  if (S_ISREG(st.st_mode)) return true;
+  return fail(error, path + ": is " + file_type_name(st.st_mode) + ", not a regular file");
+}
+
+namespace {
+
+bool read_exactly(int fd, uint8_t* data, size_t size) {
+  while (size > 0) {
+    const ssize_t n = read(fd, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    data += n;
+    size -= size_t(n);
   }
-  bytes->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   return true;
+}
+
+// Reads the regular file open as `fd` once its type and size are known to be acceptable.
+bool read_open_file(const std::string& path, int fd, std::vector<uint8_t>* bytes, uint64_t max_bytes,
+                    std::string* error) {
+  struct stat st;
+  if (fstat(fd, &st) != 0) return fail(error, path + ": cannot read: " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) return fail(error, path + ": is " + std::string(file_type_name(st.st_mode)) + ", not a regular file");
+  if (uint64_t(st.st_size) > max_bytes)
+    return fail(error, path + ": " + std::to_string(st.st_size) + " bytes, more than the limit of " +
+                           std::to_string(max_bytes) + " (--max-memory)");
+  const int flags = fcntl(fd, F_GETFL);
+  if (flags >= 0) fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  bytes->resize(size_t(st.st_size));
+  if (!read_exactly(fd, bytes->data(), bytes->size()))
+    return fail(error, path + ": cannot read (" + std::strerror(errno) + ", or the file shrank)");
+  return true;
+}
+
+}  // namespace
+
+bool read_file(const std::string& path, std::vector<uint8_t>* bytes, std::string* error, uint64_t max_bytes) {
+  // Non-blocking, so opening a FIFO with no writer returns at once and fstat refuses it.
+  const int fd = open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) return fail(error, path + ": no such file");
+    return fail(error, path + ": cannot open: " + std::strerror(errno));
+  }
+  const bool ok = read_open_file(path, fd, bytes, max_bytes, error);
+  close(fd);
+  return ok;
 }
 
 bool check_output_path(const std::string& path, std::string* error) {
@@ -94,12 +141,8 @@ bool check_output_path(const std::string& path, std::string* error) {
     return fail(error, path + ": cannot check the output: " + std::strerror(errno));
   }
   if (S_ISREG(st.st_mode)) return true;
-  const char* what = S_ISLNK(st.st_mode)   ? "a symbolic link"
-                     : S_ISDIR(st.st_mode) ? "a folder"
-                     : S_ISFIFO(st.st_mode) ? "a FIFO"
-                     : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
-                                                                  : "not a regular file";
-  return fail(error, path + ": the output exists and is " + what + "; refusing to replace it");
+  return fail(error, path + ": the output exists and is " + std::string(file_type_name(st.st_mode)) +
+                         "; refusing to replace it");
 }
 
 bool is_one_of(const std::string& path, const std::vector<std::string>& inputs) {

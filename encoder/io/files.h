@@ -6,7 +6,18 @@
 
 namespace dcurve {
 
-bool read_file(const std::string& path, std::vector<uint8_t>* bytes, std::string* error);
+// Reads the whole of a regular file (links followed) of at most `max_bytes` bytes. A folder,
+// FIFO, device or socket is refused without waiting on it (opened non-blocking), and the size
+// is checked before anything is allocated; errors name the file.
+bool read_file(const std::string& path, std::vector<uint8_t>* bytes, std::string* error,
+               uint64_t max_bytes = UINT64_MAX);
+
+// Whether `path` is a regular file (links followed); otherwise false and an error naming what
+// it is ("is a FIFO", "does not exist", ...).
+bool check_input_file(const std::string& path, std::string* error);
+
+// What a file of mode `st_mode` is, for messages: "a symbolic link", "a FIFO", "a folder", ...
+const char* file_type_name(unsigned st_mode);
 
 // The file name's extension with its dot, lower case (".obj" for "a/B.OBJ"; "" when none).
 std::string lowercase_extension(const std::string& path);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 
@@ -40,19 +41,26 @@ bool append_polygon(const std::string& path, const PolygonSoup& soup, size_t p, 
   const size_t vertices = soup.xyz.size() / 3;
   const std::string face = path + ": face " + std::to_string(p) + ": ";
   if (n < 3) return fail(error, face + "fewer than 3 vertices");
-  for (size_t k = 0; k < n; ++k) {
+  for (size_t k = 0; k < n; ++k)
     if (ids[k] >= vertices) return fail(error, face + "vertex index out of range");
-    if (std::find(ids, ids + k, ids[k]) != ids + k)
-      return fail(error, face + "uses vertex " + std::to_string(ids[k]) + " twice (degenerate face)");
-  }
+  if (face_repeats_vertex(ids, n)) return fail(error, face + "uses a vertex twice (degenerate face)");
   for (size_t k = 1; k + 1 < n; ++k) faces->insert(faces->end(), {ids[0], ids[k], ids[k + 1]});
   return true;
+}
+
+bool coordinate_in_range(float x) { return std::isfinite(x) && std::fabs(x) <= kMaxCoordinate; }
+
+std::string coordinate_range_text() {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "finite and within +-%g", double(kMaxCoordinate));
+  return buf;
 }
 
 bool copy_finite_vertices(const std::string& path, const PolygonSoup& soup, std::vector<float>* xyz,
                           std::string* error) {
   for (size_t i = 0; i < soup.xyz.size(); ++i)
-    if (!std::isfinite(soup.xyz[i])) return fail(error, path + ": vertex " + std::to_string(i / 3) + " is not finite");
+    if (!coordinate_in_range(soup.xyz[i]))
+      return fail(error, path + ": vertex " + std::to_string(i / 3) + ": a coordinate is not " + coordinate_range_text());
   *xyz = soup.xyz;
   return true;
 }
@@ -61,8 +69,7 @@ bool copy_finite_vertices(const std::string& path, const PolygonSoup& soup, std:
 
 bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uint32_t>* faces,
                std::string* error) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return fail(error, path + ": no such file");
+  if (!check_input_file(path, error)) return false;
   DeclaredCounts declared;
   if (!check_text_mesh_vertices(path, &declared, error)) return false;
   PolygonSoup soup;
@@ -77,10 +84,25 @@ bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uin
 
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
                 const std::vector<uint32_t>& faces, std::string* error) {
+  const size_t bad = find_degenerate_triangle(faces);
+  if (bad != SIZE_MAX)
+    return fail(error, path + ": triangle " + std::to_string(bad) + " uses a vertex twice; degenerate triangles are not written");
   std::string bytes;
   if (!mesh_file_bytes(lowercase_extension(path), xyz, vertex_count, faces, &bytes))
     return fail(error, path + ": cannot write mesh: the extension is not .obj, .off or .ply");
   return write_file_atomic(path, bytes.data(), bytes.size(), error);
+}
+
+bool face_repeats_vertex(const uint32_t* ids, size_t n) {
+  for (size_t k = 1; k < n; ++k)
+    if (std::find(ids, ids + k, ids[k]) != ids + k) return true;
+  return false;
+}
+
+size_t find_degenerate_triangle(const std::vector<uint32_t>& faces) {
+  for (size_t t = 0; t + 2 < faces.size(); t += 3)
+    if (face_repeats_vertex(faces.data() + t, 3)) return t / 3;
+  return SIZE_MAX;
 }
 
 bool validate_animation(const Animation& anim, std::string* error) {
@@ -88,11 +110,16 @@ bool validate_animation(const Animation& anim, std::string* error) {
   if (anim.vertex_count == 0) return fail(error, "mesh has no vertices");
   for (uint32_t idx : anim.faces)
     if (idx >= anim.vertex_count) return fail(error, "face index out of range");
+  const size_t bad = find_degenerate_triangle(anim.faces);
+  if (bad != SIZE_MAX)
+    return fail(error, "triangle " + std::to_string(bad) + " uses a vertex twice (a degenerate triangle, refused in every format)");
   for (size_t f = 0; f < anim.frames.size(); ++f) {
     if (anim.frames[f].size() != size_t(anim.vertex_count) * 3)
       return fail(error, "frame " + std::to_string(f) + " has a different vertex count");
-    for (float x : anim.frames[f])
-      if (!std::isfinite(x)) return fail(error, "frame " + std::to_string(f) + " has a non-finite coordinate");
+    for (size_t i = 0; i < anim.frames[f].size(); ++i)
+      if (!coordinate_in_range(anim.frames[f][i]))
+        return fail(error, "frame " + std::to_string(f) + ", vertex " + std::to_string(i / 3) + ": a coordinate is not " +
+                               coordinate_range_text());
   }
   return true;
 }

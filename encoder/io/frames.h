@@ -2,6 +2,7 @@
 // read through OpenMesh's readers. Vertex order is never changed: vertex i read is the file's
 // vertex i, and a file the reader would alter (a skipped record, an unusable face) is refused.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -10,15 +11,16 @@
 
 namespace dcurve {
 
-// Reads one mesh. Polygons become fans of triangles from their first vertex; non-manifold
+// Reads one mesh (a regular file; a FIFO or device is refused by name). Polygons become fans of triangles from their first vertex; non-manifold
 // faces are kept as they are. Refused, with the file named: a vertex count or face count that
 // differs from the file's own, a face with fewer than 3 vertices, an index out of range or a
-// vertex used twice, a coordinate that is not finite.
+// vertex used twice, a coordinate that is not finite or beyond kMaxCoordinate.
 bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uint32_t>* faces,
                std::string* error);
 
 // Writes one mesh; the format follows the extension (.obj, .ply, .off; encoder/io/mesh_writer.h).
-// Written through write_file_atomic, so a failure leaves no partial file.
+// Written through write_file_atomic, so a failure leaves no partial file. A degenerate
+// triangle is refused (no reader would take the file back).
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
                 const std::vector<uint32_t>& faces, std::string* error);
 
@@ -41,7 +43,19 @@ bool read_frame_folder(const std::string& dir, Animation* anim, std::string* err
 bool write_frame_folder(const std::string& dir, const Animation& anim, const std::string& ext,
                         std::string* error);
 
-// Checks an animation in memory: non-empty, consistent counts, indices in range, finite.
+// Coordinates beyond this magnitude are refused by every reader: the codec's float32
+// arithmetic (squared distances, bounding boxes) must stay finite.
+constexpr float kMaxCoordinate = 1e18f;
+
+// Whether a face (any polygon) names one of its n vertices twice: the one rule for degenerate
+// faces. Every reader refuses such a face and every writer refuses to write one.
+bool face_repeats_vertex(const uint32_t* ids, size_t n);
+
+// The first triangle of `faces` that repeats a vertex, or SIZE_MAX.
+size_t find_degenerate_triangle(const std::vector<uint32_t>& faces);
+
+// Checks an animation in memory: non-empty, consistent counts, indices in range, no
+// degenerate triangle (face_repeats_vertex), coordinates finite and within kMaxCoordinate.
 bool validate_animation(const Animation& anim, std::string* error);
 
 }  // namespace dcurve

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "codec/common/error.h"
+#include "encoder/io/read_limits.h"
 
 namespace dcurve {
 namespace {
@@ -27,6 +28,11 @@ bool locate(const tinygltf::Model& model, int view_index, size_t offset, size_t 
   if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
     return fail(error, what + ": buffer " + std::to_string(view.buffer) + " does not exist");
   const std::vector<unsigned char>& data = model.buffers[view.buffer].data;
+  // glTF 2.0 section 3.6.2.4: a stride holds at least one element and is 4-byte aligned.
+  if (stride != 0 && (stride < element_bytes || stride % 4 != 0))
+    return fail(error, what + ": byteStride " + std::to_string(stride) + " is " +
+                           (stride < element_bytes ? "smaller than its element (" + std::to_string(element_bytes) + " bytes)"
+                                                   : std::string("not a multiple of 4")));
   if (stride == 0) stride = element_bytes;
   // Bounded before multiplying, so a hostile count cannot wrap around.
   const bool fits = view.byteOffset <= data.size() && view.byteLength <= data.size() - view.byteOffset &&
@@ -37,6 +43,11 @@ bool locate(const tinygltf::Model& model, int view_index, size_t offset, size_t 
   span->data = data.data() + view.byteOffset + offset;
   span->stride = stride;
   return true;
+}
+
+// The bufferView's byteStride, 0 (packed) for a view that does not exist (locate refuses it).
+size_t view_stride(const tinygltf::Model& model, int view) {
+  return view >= 0 && size_t(view) < model.bufferViews.size() ? model.bufferViews[view].byteStride : 0;
 }
 
 uint32_t load_index(const uint8_t* p, int component_type) {
@@ -95,7 +106,7 @@ const tinygltf::Accessor* find_accessor(const tinygltf::Model& model, int index,
 }  // namespace
 
 bool read_float_accessor(const tinygltf::Model& model, int index, int components, const std::string& what,
-                         std::vector<float>* out, std::string* error) {
+                         MemoryBudget* budget, std::vector<float>* out, std::string* error) {
   const tinygltf::Accessor* a = find_accessor(model, index, what, error);
   if (!a) return false;
   const int type = components == 1 ? TINYGLTF_TYPE_SCALAR : TINYGLTF_TYPE_VEC3;
@@ -107,18 +118,20 @@ bool read_float_accessor(const tinygltf::Model& model, int index, int components
   if (a->bufferView >= 0 && size_t(a->bufferView) < model.bufferViews.size() &&
       a->count > model.bufferViews[a->bufferView].byteLength)
     return fail(error, what + ": accessor " + std::to_string(index) + " counts more elements than its bufferView holds");
+  if (!budget->take(a->count, 4 * uint64_t(components), what, error)) return false;
   out->assign(a->count * components, 0.0f);
   if (a->bufferView >= 0) {  // without a view, the values are zeros (then sparse)
     Span span;
-    const size_t stride = model.bufferViews.size() > size_t(a->bufferView) ? model.bufferViews[a->bufferView].byteStride : 0;
-    if (!locate(model, a->bufferView, a->byteOffset, a->count, 4 * size_t(components), stride, what, &span, error))
+    if (!locate(model, a->bufferView, a->byteOffset, a->count, 4 * size_t(components), view_stride(model, a->bufferView),
+                what, &span, error))
       return false;
     for (size_t i = 0; i < a->count; ++i) std::memcpy(out->data() + i * components, span.data + i * span.stride, 4 * size_t(components));
   }
   return !a->sparse.isSparse || apply_sparse(model, *a, components, what, out, error);
 }
 
-bool read_index_accessor(const tinygltf::Model& model, int index, std::vector<uint32_t>* out, std::string* error) {
+bool read_index_accessor(const tinygltf::Model& model, int index, MemoryBudget* budget, std::vector<uint32_t>* out,
+                         std::string* error) {
   const tinygltf::Accessor* a = find_accessor(model, index, "indices", error);
   if (!a) return false;
   const size_t bytes = index_bytes(a->componentType);
@@ -126,9 +139,10 @@ bool read_index_accessor(const tinygltf::Model& model, int index, std::vector<ui
     return fail(error, "indices: accessor " + std::to_string(index) +
                            " is not a plain SCALAR of unsigned byte, short or int (sparse indices are not read)");
   Span span;
-  if (!locate(model, a->bufferView, a->byteOffset, a->count, bytes, model.bufferViews[a->bufferView].byteStride,
-              "indices", &span, error))
+  if (!locate(model, a->bufferView, a->byteOffset, a->count, bytes, view_stride(model, a->bufferView), "indices", &span,
+              error))
     return false;
+  if (!budget->take(a->count, 4, "indices", error)) return false;
   out->resize(a->count);
   for (size_t i = 0; i < a->count; ++i) (*out)[i] = load_index(span.data + i * span.stride, a->componentType);
   return true;

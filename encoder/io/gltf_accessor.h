@@ -12,13 +12,17 @@ class Model;
 
 namespace dcurve {
 
+class MemoryBudget;
+
 // The float values of accessor `index` (count x components, FLOAT components, `components`
 // per element: 1 SCALAR, 3 VEC3). Errors say which accessor and why; `what` names its role
-// ("POSITION", "morph target 2", ...).
+// ("POSITION", "morph target 2", ...). The array is taken from `budget` before it is
+// allocated. A bufferView's byteStride must hold an element and be a multiple of 4.
 bool read_float_accessor(const tinygltf::Model& model, int index, int components, const std::string& what,
-                         std::vector<float>* out, std::string* error);
+                         MemoryBudget* budget, std::vector<float>* out, std::string* error);
 
 // The values of an index accessor (SCALAR, UNSIGNED_BYTE/SHORT/INT).
-bool read_index_accessor(const tinygltf::Model& model, int index, std::vector<uint32_t>* out, std::string* error);
+bool read_index_accessor(const tinygltf::Model& model, int index, MemoryBudget* budget, std::vector<uint32_t>* out,
+                         std::string* error);
 
 }  // namespace dcurve

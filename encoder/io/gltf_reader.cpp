@@ -3,31 +3,19 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
+#include "encoder/io/frame_times.h"
 #include "encoder/io/gltf_accessor.h"
+#include "encoder/io/gltf_load.h"
+#include "encoder/io/quoted_text.h"
 
 namespace dcurve {
 namespace {
-
-// dcurve reads geometry only: images are neither decoded nor required to exist.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-  return true;
-}
-
-bool load_model(const std::string& path, tinygltf::Model* model, std::string* error) {
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skip_image, nullptr);
-  std::string err, warn;
-  const bool ok = lowercase_extension(path) == ".glb" ? loader.LoadBinaryFromFile(model, &err, &warn, path)
-                                                      : loader.LoadASCIIFromFile(model, &err, &warn, path);
-  while (!err.empty() && std::isspace(static_cast<unsigned char>(err.back()))) err.pop_back();  // tinygltf ends lines with \n
-  if (!ok) return fail(error, "cannot read glTF: " + (err.empty() ? std::string("malformed file") : err));
-  return true;
-}
 
 // Compression extensions change what the buffers hold; reading through them would give garbage.
 bool check_extensions(const tinygltf::Model& model, std::string* error) {
@@ -35,12 +23,12 @@ bool check_extensions(const tinygltf::Model& model, std::string* error) {
   used.insert(used.end(), model.extensionsRequired.begin(), model.extensionsRequired.end());
   for (const std::string& e : used)
     if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression")
-      return fail(error, "uses " + e +
+      return fail(error, "uses " + quote_file_text(e) +
                              ", which dcurve does not decode (supported: uncompressed and sparse accessors; "
                              "not Draco or meshopt compression): export without mesh compression");
   for (const std::string& e : model.extensionsRequired)
     if (e != "KHR_materials_unlit" && e != "KHR_texture_transform" && e != "KHR_mesh_quantization")
-      return fail(error, "requires the extension " + e + ", which dcurve does not read");
+      return fail(error, "requires the extension " + quote_file_text(e) + ", which dcurve does not read");
   return true;
 }
 
@@ -55,7 +43,7 @@ bool choose_mesh(const tinygltf::Model& model, int mesh_index, int* chosen, std:
   if (model.meshes.size() > 1) {
     std::string names;
     for (size_t m = 0; m < model.meshes.size(); ++m)
-      names += (m ? ", " : "") + std::to_string(m) + " '" + model.meshes[m].name + "'";
+      names += (m ? ", " : "") + std::to_string(m) + " '" + quote_file_text(model.meshes[m].name, 40) + "'";
     return fail(error, "holds " + std::to_string(model.meshes.size()) + " meshes (" + names +
                            "); dcurve encodes one: choose it with --gltf-mesh INDEX");
   }
@@ -75,18 +63,20 @@ const char* mode_name(int mode) {
   }
 }
 
-// The base positions, faces and morph targets of the mesh's one triangle primitive.
+// The base positions, faces and morph targets of the mesh's one triangle primitive. A target
+// that moves no vertex is an empty array, so many of them cost nothing.
 struct Geometry {
   std::vector<float> base;
   std::vector<uint32_t> faces;
   std::vector<std::vector<float>> targets;
 };
 
-bool read_faces(const tinygltf::Model& model, const tinygltf::Primitive& p, uint32_t vertices, std::vector<uint32_t>* faces,
-                std::string* error) {
+bool read_faces(const tinygltf::Model& model, const tinygltf::Primitive& p, uint32_t vertices, MemoryBudget* budget,
+                std::vector<uint32_t>* faces, std::string* error) {
   if (p.indices >= 0) {
-    if (!read_index_accessor(model, p.indices, faces, error)) return false;
+    if (!read_index_accessor(model, p.indices, budget, faces, error)) return false;
   } else {
+    if (!budget->take(vertices, 4, "indices", error)) return false;
     faces->resize(vertices);
     for (uint32_t v = 0; v < vertices; ++v) (*faces)[v] = v;
   }
@@ -96,8 +86,23 @@ bool read_faces(const tinygltf::Model& model, const tinygltf::Primitive& p, uint
   return true;
 }
 
-bool read_geometry(const tinygltf::Model& model, const tinygltf::Mesh& mesh, Geometry* g, std::string* error) {
-  const std::string name = "mesh '" + mesh.name + "'";
+bool read_targets(const tinygltf::Model& model, const tinygltf::Primitive& p, MemoryBudget* budget, Geometry* g,
+                  std::string* error) {
+  if (!budget->take(p.targets.size(), sizeof(std::vector<float>), "morph targets", error)) return false;
+  g->targets.resize(p.targets.size());
+  for (size_t t = 0; t < p.targets.size(); ++t) {
+    auto tp = p.targets[t].find("POSITION");
+    if (tp == p.targets[t].end()) continue;  // a target that moves no vertex
+    const std::string what = "morph target " + std::to_string(t);
+    if (!read_float_accessor(model, tp->second, 3, what, budget, &g->targets[t], error)) return false;
+    if (g->targets[t].size() != g->base.size()) return fail(error, what + ": vertex count differs from POSITION");
+  }
+  return true;
+}
+
+bool read_geometry(const tinygltf::Model& model, const tinygltf::Mesh& mesh, MemoryBudget* budget, Geometry* g,
+                   std::string* error) {
+  const std::string name = "mesh '" + quote_file_text(mesh.name, 40) + "'";
   if (mesh.primitives.size() != 1)
     return fail(error, name + " has " + std::to_string(mesh.primitives.size()) + " primitives; dcurve reads one");
   const tinygltf::Primitive& p = mesh.primitives[0];
@@ -105,19 +110,12 @@ bool read_geometry(const tinygltf::Model& model, const tinygltf::Mesh& mesh, Geo
     return fail(error, name + ": its primitive is " + std::string(mode_name(p.mode)) + ", not TRIANGLES");
   auto pos = p.attributes.find("POSITION");
   if (pos == p.attributes.end()) return fail(error, name + " has no POSITION attribute");
-  if (!read_float_accessor(model, pos->second, 3, "POSITION", &g->base, error)) return false;
+  if (!read_float_accessor(model, pos->second, 3, "POSITION", budget, &g->base, error)) return false;
   if (g->base.empty()) return fail(error, name + " has no vertices");
-  if (!read_faces(model, p, uint32_t(g->base.size() / 3), &g->faces, error)) return false;
+  if (g->base.size() / 3 > UINT32_MAX) return fail(error, name + " has more than 2^32 vertices");
+  if (!read_faces(model, p, uint32_t(g->base.size() / 3), budget, &g->faces, error)) return false;
   if (p.targets.empty()) return fail(error, name + " has no morph targets (dcurve reads morph-target animation)");
-  for (size_t t = 0; t < p.targets.size(); ++t) {
-    g->targets.emplace_back(g->base.size(), 0.0f);
-    auto tp = p.targets[t].find("POSITION");
-    if (tp == p.targets[t].end()) continue;  // a target that moves no vertex
-    const std::string what = "morph target " + std::to_string(t);
-    if (!read_float_accessor(model, tp->second, 3, what, &g->targets[t], error)) return false;
-    if (g->targets[t].size() != g->base.size()) return fail(error, what + ": vertex count differs from POSITION");
-  }
-  return true;
+  return read_targets(model, p, budget, g, error);
 }
 
 // The one sampler that animates the weights of a node showing mesh `mesh`.
@@ -142,24 +140,16 @@ bool find_weights_sampler(const tinygltf::Model& model, int mesh, const tinygltf
   return true;
 }
 
-// Frames per second from evenly spaced key times.
+// Frames per second from the key times (frame_times.h).
 bool key_frame_rate(const std::vector<float>& times, double* fps, std::string* error) {
-  if (times.empty()) return fail(error, "the weights animation has no keys");
-  if (times.size() < 2) return true;
-  const double dt = (double(times.back()) - times.front()) / double(times.size() - 1);
-  if (!(dt > 0)) return fail(error, "the weights animation's key times do not increase");
-  for (size_t i = 0; i < times.size(); ++i)
-    if (std::abs(times[i] - (times.front() + dt * double(i))) > 0.01 * dt)
-      return fail(error, "the weights animation's keys are not evenly spaced (key " + std::to_string(i) + " at " +
-                             std::to_string(times[i]) + " s); dcurve needs one key per frame");
-  *fps = 1.0 / dt;
-  return true;
+  return frame_rate_from_times(std::vector<double>(times.begin(), times.end()), "the weights animation's key times", fps,
+                               error);
 }
 
-bool read_keys(const tinygltf::Model& model, const tinygltf::AnimationSampler& s, size_t targets,
+bool read_keys(const tinygltf::Model& model, const tinygltf::AnimationSampler& s, size_t targets, MemoryBudget* budget,
                std::vector<float>* times, std::vector<float>* weights, std::string* error) {
-  if (!read_float_accessor(model, s.input, 1, "animation input (times)", times, error) ||
-      !read_float_accessor(model, s.output, 1, "animation output (weights)", weights, error))
+  if (!read_float_accessor(model, s.input, 1, "animation input (times)", budget, times, error) ||
+      !read_float_accessor(model, s.output, 1, "animation output (weights)", budget, weights, error))
     return false;
   const size_t per_key = s.interpolation == "CUBICSPLINE" ? 3 * targets : targets;
   if (weights->size() != times->size() * per_key)
@@ -174,32 +164,62 @@ bool read_keys(const tinygltf::Model& model, const tinygltf::AnimationSampler& s
   return true;
 }
 
-void blend_frames(const Geometry& g, const std::vector<float>& weights, size_t keys, Animation* anim) {
+bool blend_frames(const Geometry& g, const std::vector<float>& weights, size_t keys, MemoryBudget* budget, Animation* anim,
+                  std::string* error) {
   const size_t targets = g.targets.size();
+  if (!budget->take(keys, g.base.size() * sizeof(float), "the frames (" + std::to_string(keys) + " keys)", error))
+    return false;
   anim->frames.assign(keys, g.base);
   for (size_t k = 0; k < keys; ++k)
     for (size_t t = 0; t < targets; ++t) {
       const float w = weights[k * targets + t];
-      if (w == 0.0f) continue;
+      if (w == 0.0f || g.targets[t].empty()) continue;
       std::vector<float>& f = anim->frames[k];
       for (size_t i = 0; i < f.size(); ++i) f[i] += w * g.targets[t][i];
     }
+  return true;
 }
 
-bool read_model_animation(const tinygltf::Model& model, int mesh_index, Animation* anim, std::string* error) {
+uint64_t accessor_count(const tinygltf::Model& model, int index) {
+  return index >= 0 && size_t(index) < model.accessors.size() ? model.accessors[index].count : 0;
+}
+
+// What the mesh's arrays and frames will take, from the accessors' counts alone: refused
+// before the first of them is allocated, however the file spreads its size over them.
+bool check_declared_size(const tinygltf::Model& model, const tinygltf::Mesh& mesh, const tinygltf::AnimationSampler& s,
+                         const MemoryBudget& budget, std::string* error) {
+  if (mesh.primitives.size() != 1) return true;  // refused by read_geometry
+  const tinygltf::Primitive& p = mesh.primitives[0];
+  auto pos = p.attributes.find("POSITION");
+  const long double vertices = pos == p.attributes.end() ? 0 : accessor_count(model, pos->second);
+  long double arrays = 1;  // POSITION
+  for (const auto& target : p.targets) arrays += target.count("POSITION");
+  const long double keys = accessor_count(model, s.input);
+  const long double bytes = 12 * vertices * (arrays + keys) + 4.0L * accessor_count(model, p.indices) +
+                            4.0L * (keys + accessor_count(model, s.output));
+  if (bytes > 1e19L || !budget.fits(uint64_t(bytes), 1))
+    return fail(error, "POSITION, the morph targets and the keys declare " + std::to_string(uint64_t(vertices)) + " vertices, " +
+                           std::to_string(uint64_t(arrays - 1)) + " morph targets and " + std::to_string(uint64_t(keys)) +
+                           " keys: more than the memory limit allows (--max-memory)");
+  return true;
+}
+
+bool read_model_animation(const tinygltf::Model& model, int mesh_index, MemoryBudget* budget, Animation* anim,
+                          std::string* error) {
   int mesh = 0;
   Geometry g;
   const tinygltf::AnimationSampler* sampler = nullptr;
   std::vector<float> times, weights;
   if (!check_extensions(model, error) || !choose_mesh(model, mesh_index, &mesh, error) ||
-      !read_geometry(model, model.meshes[mesh], &g, error) || !find_weights_sampler(model, mesh, &sampler, error) ||
-      !read_keys(model, *sampler, g.targets.size(), &times, &weights, error) ||
+      !find_weights_sampler(model, mesh, &sampler, error) ||
+      !check_declared_size(model, model.meshes[mesh], *sampler, *budget, error) ||
+      !read_geometry(model, model.meshes[mesh], budget, &g, error) ||
+      !read_keys(model, *sampler, g.targets.size(), budget, &times, &weights, error) ||
       !key_frame_rate(times, &anim->frame_rate, error))
     return false;
   anim->vertex_count = uint32_t(g.base.size() / 3);
   anim->faces = std::move(g.faces);
-  blend_frames(g, weights, times.size(), anim);
-  return validate_animation(*anim, error);
+  return blend_frames(g, weights, times.size(), budget, anim, error) && validate_animation(*anim, error);
 }
 
 }  // namespace
@@ -209,11 +229,14 @@ bool is_gltf_path(const std::string& path) {
   return ext == ".gltf" || ext == ".glb";
 }
 
-bool read_gltf_animation(const std::string& path, int mesh_index, Animation* anim, std::string* error) {
+bool read_gltf_animation(const std::string& path, int mesh_index, Animation* anim, std::string* error,
+                         const ReadLimits& limits) {
   tinygltf::Model model;
   *anim = Animation{};
   std::string err;
-  if (!load_model(path, &model, &err) || !read_model_animation(model, mesh_index, anim, &err))
+  MemoryBudget budget(limits.max_memory);
+  if (!load_gltf_model(path, limits, &budget, &model, &err) ||
+      !read_model_animation(model, mesh_index, &budget, anim, &err))
     return fail(error, path + ": " + err);
   return true;
 }

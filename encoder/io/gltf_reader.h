@@ -5,6 +5,7 @@
 #include <string>
 
 #include "encoder/io/frames.h"
+#include "encoder/io/read_limits.h"
 
 namespace dcurve {
 
@@ -15,7 +16,10 @@ bool is_gltf_path(const std::string& path);
 // with a message naming the file: no weights animation, several meshes, several primitives
 // or animations, non-triangle primitives, unevenly spaced keys, data it cannot read (sparse
 // accessors it cannot apply, quantized attributes) and the compression extensions
-// KHR_draco_mesh_compression and EXT_meshopt_compression, which it does not decode.
-bool read_gltf_animation(const std::string& path, int mesh_index, Animation* anim, std::string* error);
+// KHR_draco_mesh_compression and EXT_meshopt_compression, which it does not decode. Buffers
+// are read under the resource policy of gltf_resources.h; every array sized from the file's
+// counts is checked against limits.max_memory before it is allocated.
+bool read_gltf_animation(const std::string& path, int mesh_index, Animation* anim, std::string* error,
+                         const ReadLimits& limits = ReadLimits());
 
 }  // namespace dcurve

@@ -6,6 +6,7 @@
 
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
+#include "encoder/io/frame_times.h"
 
 namespace dcurve {
 namespace {
@@ -87,9 +88,11 @@ bool read_mdd(const std::string& path, const std::vector<uint8_t>& b, Animation*
   if (b.size() < 8) return fail(error, path + ": too short for an MDD header");
   const uint64_t frames = load_u32(&b[0], true), vertices = load_u32(&b[4], true);
   if (!check_size(path, 8 + 4 * frames, frames, vertices, b.size(), error)) return false;
-  const float first = load_f32(&b[8], true), last = load_f32(&b[8 + 4 * (frames - 1)], true);
-  info->start = first;
-  info->frame_rate = frames > 1 && last > first ? double(frames - 1) / (double(last) - first) : 0;
+  std::vector<double> times(frames);
+  for (size_t f = 0; f < frames; ++f) times[f] = load_f32(&b[8 + 4 * f], true);
+  info->start = times[0];
+  info->frame_rate = 0;
+  if (!frame_rate_from_times(times, path + ": the MDD frame times", &info->frame_rate, error)) return false;
   anim->vertex_count = uint32_t(vertices);
   anim->frames.resize(frames);
   return read_positions(path, &b[8 + 4 * frames], true, anim, error);
@@ -105,11 +108,13 @@ bool point_cache_kind(const std::string& path, PointCacheKind* kind) {
   return true;
 }
 
-bool read_point_cache(const std::string& path, Animation* anim, PointCacheInfo* info, std::string* error) {
+bool read_point_cache(const std::string& path, Animation* anim, PointCacheInfo* info, std::string* error,
+                      uint64_t max_memory) {
   PointCacheKind kind;
   if (!point_cache_kind(path, &kind)) return fail(error, path + ": not a .pc2 or .mdd file");
   std::vector<uint8_t> bytes;
-  if (!read_file(path, &bytes, error)) return false;
+  // The frames take about the file's size again: both must fit.
+  if (!read_file(path, &bytes, error, max_memory / 2)) return false;
   *anim = Animation{};
   *info = PointCacheInfo{};
   const bool ok = kind == PointCacheKind::Pc2 ? read_pc2(path, bytes, anim, info, error)

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "encoder/io/frames.h"
+#include "encoder/io/read_limits.h"
 
 namespace dcurve {
 
@@ -17,15 +18,19 @@ enum class PointCacheKind { Pc2, Mdd };
 struct PointCacheInfo {
   uint32_t vertex_count = 0, frame_count = 0;
   double start = 0;        // PC2: start frame; MDD: time of the first frame, seconds
-  double frame_rate = 0;   // MDD: from the frame times (0 when it has fewer than two); PC2: 0
+  double frame_rate = 0;   // MDD: from its evenly spaced frame times (0 when it has one frame); PC2: 0
 };
 
 // ".pc2" -> Pc2, ".mdd" -> Mdd (any case); false for other extensions.
 bool point_cache_kind(const std::string& path, PointCacheKind* kind);
 
-// Reads every frame of a PC2 or MDD file into anim->frames (faces left empty). A header
-// that does not match the file's size, or a non-finite value, is an error naming the file.
-bool read_point_cache(const std::string& path, Animation* anim, PointCacheInfo* info, std::string* error);
+// Reads every frame of a PC2 or MDD file into anim->frames (faces left empty). Errors name the
+// file: not a regular file (a FIFO, a device, a link to one), larger than half of
+// `max_memory` (the frames take as much again), a header that does not match the file's size,
+// a non-finite value, MDD frame times that are not finite, strictly increasing and evenly
+// spaced (encoder/io/frame_times.h).
+bool read_point_cache(const std::string& path, Animation* anim, PointCacheInfo* info, std::string* error,
+                      uint64_t max_memory = default_max_memory());
 
 // Writes a cache one frame at a time to an open stream (the caller owns the file and where it
 // lands). The header needs the frame count up front.

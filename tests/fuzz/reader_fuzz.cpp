@@ -5,6 +5,12 @@
 // A crash, sanitizer report, hang, a rejection without a message, or an accepted input that
 // is inconsistent (another vertex count than the file declares, a frame of the wrong size, an
 // index out of range, a coordinate that is not finite) is a finding.
+// A glTF is written into asset/ of a scratch folder that also holds what its uris may name
+// (asset/buf.bin, 100 bytes of a triangle animation) and what they must not read: a FIFO, a
+// folder, a link to a file outside and that file (outside.bin, every float kOutsideMarker).
+// An accepted animation holding kOutsideMarker read a file outside the asset's folder.
+// The readers get a 256 MiB memory limit, within libFuzzer's own.
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -81,21 +87,46 @@ uint32_t u32_at(const std::string& bytes, size_t offset, bool big_endian) {
                     : uint32_t(b[3]) << 24 | uint32_t(b[2]) << 16 | uint32_t(b[1]) << 8 | b[0];
 }
 
+constexpr float kOutsideMarker = 31337.0f;
+constexpr uint64_t kMaxMemory = uint64_t(256) << 20;
+
+void write_file(const std::string& path, const void* data, size_t size) {
+  FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f || std::fwrite(data, 1, size, f) != size || std::fclose(f) != 0) std::abort();
+}
+
+// The companions of asset/input.gltf (see the top of the file).
+void make_companions(const std::string& dir) {
+  // The layout of tests/gltf_fixture.h: positions, one target, indices, key times, weights.
+  const float pos_target[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  const uint32_t ids[3] = {0, 1, 2};
+  const float keys[4] = {0, 0.5f, 0, 1};
+  uint8_t buf[100];
+  std::memcpy(buf, pos_target, 72);
+  std::memcpy(buf + 72, ids, 12);
+  std::memcpy(buf + 84, keys, 16);
+  if (mkdir((dir + "/asset").c_str(), 0700) != 0 || mkdir((dir + "/asset/dir.bin").c_str(), 0700) != 0 ||
+      mkfifo((dir + "/asset/fifo.bin").c_str(), 0600) != 0 ||
+      symlink((dir + "/outside.bin").c_str(), (dir + "/asset/link.bin").c_str()) != 0)
+    std::abort();
+  write_file(dir + "/asset/buf.bin", buf, 100);
+  std::vector<float> outside(25, kOutsideMarker);
+  write_file(dir + "/outside.bin", outside.data(), 100);
+}
+
 const std::string& scratch_dir() {
   static const std::string dir = [] {
     char name[] = "/tmp/dcurve-reader-fuzz-XXXXXX";
     if (!mkdtemp(name)) std::abort();
+    make_companions(name);
     return std::string(name);
   }();
   return dir;
 }
 
 std::string write_scratch(const Input& input) {
-  const std::string path = scratch_dir() + "/input" + input.extension;
-  FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f || std::fwrite(input.bytes.data(), 1, input.bytes.size(), f) != input.bytes.size() ||
-      std::fclose(f) != 0)
-    std::abort();
+  const std::string path = scratch_dir() + (input.kind == Kind::Gltf ? "/asset/input" : "/input") + input.extension;
+  write_file(path, input.bytes.data(), input.bytes.size());
   return path;
 }
 
@@ -131,8 +162,13 @@ bool read_as_mesh(const Input& input, const std::string& path, std::string* erro
 
 bool read_as_gltf(const std::string& path, std::string* error) {
   dcurve::Animation anim;
-  if (!dcurve::read_gltf_animation(path, -1, &anim, error)) return false;
+  dcurve::ReadLimits limits;
+  limits.max_memory = kMaxMemory;
+  if (!dcurve::read_gltf_animation(path, -1, &anim, error, limits)) return false;
   check_animation(anim);
+  for (const auto& frame : anim.frames)
+    for (float x : frame)
+      if (x == kOutsideMarker) __builtin_trap();  // read a file outside the asset's folder
   if (!(anim.frame_rate > 0) || !std::isfinite(anim.frame_rate)) __builtin_trap();
   return true;
 }
@@ -141,7 +177,7 @@ bool read_as_gltf(const std::string& path, std::string* error) {
 bool read_as_point_cache(const Input& input, const std::string& path, std::string* error) {
   dcurve::Animation anim;
   dcurve::PointCacheInfo info;
-  if (!dcurve::read_point_cache(path, &anim, &info, error)) return false;
+  if (!dcurve::read_point_cache(path, &anim, &info, error, kMaxMemory)) return false;
   const bool mdd = input.kind == Kind::Mdd;
   if (input.bytes.size() < (mdd ? 8u : 32u)) __builtin_trap();  // accepted without a header
   const uint32_t points = u32_at(input.bytes, mdd ? 4 : 16, mdd);
