@@ -22,6 +22,7 @@
 #include "codec/compress/container_writer.h"
 #include "codec/decompress/container_reader.h"
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "cli_util.h"
 #include "container_bytes.h"
 #include "test_util.h"

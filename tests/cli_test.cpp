@@ -10,6 +10,7 @@
 #include <string>
 
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "corpus/sim/simulation.h"
 #include "cli_util.h"
 #include "test_util.h"

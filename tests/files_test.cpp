@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "encoder/io/signal_cleanup.h"
 #include "test_util.h"
 

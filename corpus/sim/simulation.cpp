@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "corpus/surfaces.h"
+#include "encoder/io/frames.h"
 
 namespace dcurve {
 

@@ -18,9 +18,13 @@ bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uin
                std::string* error);
 
 // Writes one mesh; the format follows the extension (.obj, .ply, .off; encoder/io/mesh_writer.h).
-// Written through write_file_atomic, so a failure leaves no partial file.
+// Written through an OutputFile, so a failure leaves no partial file; a regular file at `path`
+// is replaced only when `replace`.
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
-                const std::vector<uint32_t>& faces, std::string* error);
+                const std::vector<uint32_t>& faces, std::string* error, bool replace = true);
+
+// "frame_00012.obj" for index 12 and extension "obj": the names of a folder output.
+std::string frame_file_name(size_t index, const std::string& ext);
 
 // The .obj/.ply/.off files of `dir` in frame-number order (encoder/io/frame_order.h), paths
 // with `dir` in front; false when there are none or the order is ambiguous.
@@ -30,7 +34,8 @@ bool list_frame_files(const std::string& dir, std::vector<std::string>* files, s
 // vertex count and face list, and finite coordinates.
 bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error);
 
-// Writes DIR/frame_00000.EXT, frame_00001.EXT, ... (EXT = "obj" or "ply"); creates DIR.
+// Writes DIR/frame_00000.EXT, frame_00001.EXT, ... (EXT = "obj" or "ply") through an
+// OutputFolder: DIR is created, or its frames are replaced as a whole.
 bool write_frame_folder(const std::string& dir, const Animation& anim, const std::string& ext,
                         std::string* error);
 
