@@ -64,8 +64,7 @@ class FolderSink : public FrameSink {
     return folder_.open(spec.path, spec.force, error);
   }
   bool add(uint32_t index, const float* xyz, std::string* error) override {
-    return write_mesh(folder_.staged(frame_file_name(index, spec_.folder_format)), xyz, spec_.vertex_count, spec_.faces,
-                      error, false);
+    return write_folder_frame(&folder_, index, spec_.folder_format, xyz, spec_.vertex_count, spec_.faces, error);
   }
   bool finish(std::string* error) override { return folder_.commit(error); }
 

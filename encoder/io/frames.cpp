@@ -143,13 +143,21 @@ std::string frame_file_name(size_t index, const std::string& ext) {
   return name;
 }
 
+bool write_folder_frame(OutputFolder* folder, size_t index, const std::string& ext, const float* xyz,
+                        uint32_t vertex_count, const std::vector<uint32_t>& faces, std::string* error) {
+  const std::string name = frame_file_name(index, ext);
+  std::string bytes;
+  if (!mesh_file_bytes(lowercase_extension(name), xyz, vertex_count, faces, &bytes))
+    return fail(error, name + ": cannot write mesh: the extension is not .obj, .off or .ply");
+  return folder->write_file(name, bytes.data(), bytes.size(), error);
+}
+
 bool write_frame_folder(const std::string& dir, const Animation& anim, const std::string& ext,
                         std::string* error) {
   OutputFolder out;
   if (!out.open(dir, true, error)) return false;
   for (size_t f = 0; f < anim.frames.size(); ++f)
-    if (!write_mesh(out.staged(frame_file_name(f, ext)), anim.frames[f].data(), anim.vertex_count, anim.faces, error, false))
-      return false;
+    if (!write_folder_frame(&out, f, ext, anim.frames[f].data(), anim.vertex_count, anim.faces, error)) return false;
   return out.commit(error);
 }
 

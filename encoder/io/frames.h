@@ -10,6 +10,8 @@
 
 namespace dcurve {
 
+class OutputFolder;
+
 // Reads one mesh. Polygons become fans of triangles from their first vertex; non-manifold
 // faces are kept as they are. Refused, with the file named: a vertex count or face count that
 // differs from the file's own, a face with fewer than 3 vertices, an index out of range or a
@@ -25,6 +27,11 @@ bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count
 
 // "frame_00012.obj" for index 12 and extension "obj": the names of a folder output.
 std::string frame_file_name(size_t index, const std::string& ext);
+
+// Writes frame `index` (frame_file_name, format `ext`: "obj", "ply" or "off") into a folder
+// being written.
+bool write_folder_frame(OutputFolder* folder, size_t index, const std::string& ext, const float* xyz,
+                        uint32_t vertex_count, const std::vector<uint32_t>& faces, std::string* error);
 
 // The .obj/.ply/.off files of `dir` in frame-number order (encoder/io/frame_order.h), paths
 // with `dir` in front; false when there are none or the order is ambiguous.

@@ -45,7 +45,7 @@ struct Layout {
     base = 4 * uint64_t(face_ids);
     targets = base + 12 * uint64_t(vertices);
     times = targets + 12 * uint64_t(vertices) * (frames - 1);
-    weights = times + 4 * uint64_t(frames);
+    weights = times + (frames > 1 ? 4 * frames : 0);  // one frame: no animation
     end = weights + 4 * uint64_t(frames) * (frames - 1);
   }
 };

@@ -109,10 +109,11 @@ bool OutputFile::failed(const std::string& what, std::string* error) {
   return fail(error, path_ + ": " + what + ": " + std::strerror(saved));
 }
 
-bool OutputFile::open(const std::string& path, bool replace, std::string* error) {
+bool OutputFile::open(const std::string& path, bool replace, std::string* error, bool sync) {
   discard();
   path_ = path;
   replace_ = replace;
+  sync_ = sync;
   written_ = 0;
   if (!check_output_path(path, replace, error)) return false;
   fd_ = create_temporary(path, &tmp_);
@@ -150,7 +151,7 @@ bool OutputFile::write_at(uint64_t offset, const void* data, size_t size, std::s
 }
 
 bool OutputFile::commit(std::string* error) {
-  if (fsync(fd_) != 0) return failed("write failed", error);
+  if (sync_ && fsync(fd_) != 0) return failed("write failed", error);
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) return failed("write failed", error);

@@ -29,8 +29,9 @@ class OutputFile {
   ~OutputFile();  // an uncommitted temporary is removed
 
   // Checks `path` (check_output_path) and creates its temporary. One open file at a time per
-  // process (the signal handler removes one).
-  bool open(const std::string& path, bool replace, std::string* error);
+  // process (the signal handler removes one). `sync`: fsync at the commit (a folder's frames
+  // skip it: OutputFolder syncs them all at once).
+  bool open(const std::string& path, bool replace, std::string* error, bool sync = true);
   bool write(const void* data, size_t size, std::string* error);
   // Overwrites bytes already written (a header whose sizes are known only at the end).
   bool write_at(uint64_t offset, const void* data, size_t size, std::string* error);
@@ -44,7 +45,7 @@ class OutputFile {
   void discard();
   std::string path_, tmp_;
   int fd_ = -1;
-  bool replace_ = false;
+  bool replace_ = false, sync_ = true;
   uint64_t written_ = 0;
 };
 

@@ -7,12 +7,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <vector>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "encoder/io/rename.h"
 #include "encoder/io/signal_cleanup.h"
 
@@ -39,6 +41,17 @@ int open_locked(const std::string& dir) {
   ::close(fd);
   errno = saved;
   return -1;
+}
+
+// The staged frames reach the disk before they replace anything: one syncfs for the lot.
+bool sync_file_system(int fd) {
+#if defined(__linux__)
+  return syncfs(fd) == 0;
+#else
+  (void)fd;
+  sync();
+  return true;
+#endif
 }
 
 // A renamed folder entry survives a crash once its folder is synced.
@@ -123,6 +136,11 @@ bool OutputFolder::create_staging(const std::string& parent, std::string* error)
 
 std::string OutputFolder::staged(const std::string& name) const { return (fs::path(staging_) / name).string(); }
 
+bool OutputFolder::write_file(const std::string& name, const void* data, size_t size, std::string* error) {
+  OutputFile file;
+  return file.open(staged(name), false, error, false) && file.write(data, size, error) && file.commit(error);
+}
+
 bool OutputFolder::commit(std::string* error) {
   // mkdtemp made the staging folder private (0700): the output gets the old folder's mode, or
   // the usual one.
@@ -136,6 +154,7 @@ bool OutputFolder::commit(std::string* error) {
     mode = 0777 & ~mode;
   }
   chmod(staging_.c_str(), mode);
+  if (!sync_file_system(staging_fd_)) return fail(error, dir_ + ": cannot sync the new frames: " + std::strerror(errno));
   if (exists_) return swap_in(error);
   SignalBlock block;  // moved and unregistered together
   if (rename_no_replace(staging_.c_str(), dir_.c_str()) != 0)
@@ -161,11 +180,13 @@ bool OutputFolder::swap_in(std::string* error) {
   staging_.clear();
   sync_folder(folder_of(dir_));
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(old, ec)) {
-    const fs::path target = fs::path(dir_) / e.path().filename();
-    if (is_mesh_file_name(e.path().filename().string())) {
-      fs::remove(e.path(), ec);
-    } else if (rename_no_replace(e.path().c_str(), target.c_str()) != 0) {
+  std::vector<fs::path> entries;  // listed first: the loop below changes the folder
+  for (const auto& e : fs::directory_iterator(old, ec)) entries.push_back(e.path());
+  for (const fs::path& entry : entries) {
+    const fs::path target = fs::path(dir_) / entry.filename();
+    if (is_mesh_file_name(entry.filename().string())) {
+      fs::remove(entry, ec);
+    } else if (rename_no_replace(entry.c_str(), target.c_str()) != 0) {
       return fail(error, target.string() + ": cannot move it back from " + old + ": " + std::strerror(errno));
     }
   }

@@ -7,8 +7,8 @@
 // it was. An existing target is locked (flock) from open to the end: a second writer fails
 // at once. A SIGINT, SIGTERM or SIGHUP removes the staging folder (encoder/io/signal_cleanup).
 #pragma once
+#include <cstddef>
 #include <string>
-#include <vector>
 
 namespace dcurve {
 
@@ -29,6 +29,9 @@ class OutputFolder {
   static bool check(const std::string& dir, bool replace, std::string* error);
   // Where the frame `name` is written before the commit.
   std::string staged(const std::string& name) const;
+  // Writes the frame `name` (an OutputFile in the staging folder, synced with the others at
+  // the commit: one syncfs rather than an fsync per frame).
+  bool write_file(const std::string& name, const void* data, size_t size, std::string* error);
   // Puts the staged frames in place of the folder's old ones.
   bool commit(std::string* error);
 
