@@ -90,6 +90,9 @@ TEST(CliOutput, AnExistingOutputIsReplacedOnlyWithForce) {
   }
   EXPECT_EQ(file_text(dir / "sim/frame_00000.obj"), "precious");
   EXPECT_EQ(file_text(dir / "sim.pc2"), "precious");
+  r = run_cli("simulate --scene rope-small --frames 2 -q --force -o " + dir / "sim.pc2");  // any frame output
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(file_text(dir / "sim.pc2").substr(0, 11), "POINTCACHE2");
 }
 
 // Issue 47: .pc2/.mdd outputs replaced a symbolic link (the other formats refused one). Now
