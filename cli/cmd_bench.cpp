@@ -13,6 +13,7 @@
 #include "encoder/curves/extract.h"
 #include "corpus/input.h"
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "corpus/sim/scene.h"
 
 namespace dcurve::cli {

@@ -3,7 +3,8 @@
 #include <cstdio>
 
 #include "cli/commands.h"
-#include "cli/decode_output.h"
+#include "cli/frame_output.h"
+#include "cli/output_path.h"
 #include "cli/messages.h"
 #include "codec/common/error.h"
 #include "codec/common/inbetween.h"
@@ -17,6 +18,7 @@ struct DecodeOpts {
   int frames = 0;
   double t = -1, seconds = -1;
   bool force = false;
+  OutputKind kind = OutputKind::Folder;
 };
 
 // The times to decode: --t, --time (seconds from frame 0), or N frames spread over [0, 1].
@@ -42,6 +44,8 @@ bool decode_times(const DecodeOpts& o, const Decoder& dec, std::vector<double>* 
 OutputSpec output_spec(const DecodeOpts& o, const Decoder& dec, uint32_t frames) {
   OutputSpec spec;
   spec.path = o.output;
+  spec.kind = o.kind;
+  spec.inputs = {o.input};
   spec.folder_format = o.format;
   spec.force = o.force;
   spec.vertex_count = dec.vertex_count();
@@ -86,8 +90,9 @@ Action add_decode(CLI::App& app) {
   auto msg = std::make_shared<Messages>("decode");
   app.add_option("input", o->input, ".dcrv file")->required();
   app.add_option("-o,--output", o->output,
-                 "Output: a folder (frame_00000.obj, ...), one mesh (.obj/.ply/.off, with --t or --time), a glTF "
-                 "file (.glb/.gltf: morph targets and a weights animation) or a point cache (.pc2/.mdd)")
+                 "Output: a folder (a name ending in / or without extension: frame_00000.obj, ...), one mesh "
+                 "(.obj/.ply/.off, with --t or --time), a glTF file (.glb/.gltf: morph targets and a weights "
+                 "animation) or a point cache (.pc2/.mdd)")
       ->required();
   auto* frames = app.add_option("--frames", o->frames, "Write N frames at t = i/(N-1) (default: the stored frame count)")
                      ->check(CLI::Range(1, 1000000));
@@ -103,14 +108,18 @@ Action add_decode(CLI::App& app) {
                  "rule; stored frames decode the same under all")
       ->check(CLI::IsMember({"file", "linear", "catmull-rom", "hermite4"}))
       ->capture_default_str();
-  app.add_flag("--force", o->force, "Replace the mesh files (.obj/.ply/.off) of an output folder that already holds some");
+  app.add_flag("--force", o->force,
+               "Replace an existing output file, or the frames (.obj/.ply/.off files) of an output folder, once the "
+               "new output is complete");
   msg->add_flags(app);
   return [o, msg]() {
     if (!std::isfinite(o->seconds) || !std::isfinite(o->t)) {  // CLI11's range checks let "nan" through
       std::fprintf(stderr, "dcurve decode: --t and --time must be numbers\n");
       return 2;
     }
-    const bool one_mesh = output_kind(o->output) == OutputKind::Mesh;
+    std::string err;
+    if (!output_kind(o->output, frame_output_kinds(), &o->kind, &err)) return msg->error(err);
+    const bool one_mesh = o->kind == OutputKind::Mesh;
     if (one_mesh && o->t < 0 && o->seconds < 0 && o->frames != 1) {
       std::fprintf(stderr, "dcurve decode: %s is one mesh: choose its time with --t T or --time SECONDS\n", o->output.c_str());
       return 2;

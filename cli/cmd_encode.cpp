@@ -6,23 +6,25 @@
 #include <new>
 
 #include "cli/commands.h"
-#include "cli/decode_output.h"
 #include "cli/face_order_text.h"
 #include "cli/messages.h"
 #include "cli/number_range.h"
+#include "cli/output_path.h"
 #include "codec/common/inbetween.h"
 #include "encoder/curves/report_json.h"
 #include "encoder/encoder.h"
 #include "corpus/input.h"
 #include "encoder/io/files.h"
 #include "encoder/io/frame_times.h"
+#include "encoder/io/gltf_references.h"
+#include "encoder/io/output_file.h"
 #include "corpus/sim/scene.h"
 
 namespace dcurve::cli {
 namespace {
 
 // The files an encode of `input` reads: a folder's frames, or the input file (glTF, point
-// cache, scene) with a point cache's mesh or a scene's surface.
+// cache, scene) with a glTF's buffers and images, a point cache's mesh or a scene's surface.
 std::vector<std::string> input_files(const std::string& input, const std::string& rest_mesh) {
   std::vector<std::string> files;
   std::string ignored;  // an unreadable input is reported when it is loaded
@@ -31,20 +33,21 @@ std::vector<std::string> input_files(const std::string& input, const std::string
     if (!list_frame_files(input, &files, &ignored)) files.clear();
     return files;
   }
-  files = {input};
+  files = gltf_referenced_files(input);
+  files.push_back(input);
   if (!rest_mesh.empty()) files.push_back(rest_mesh);
   Scene scene;
   if (load_scene_file(input, &scene, &ignored) && !scene.mesh_file.empty()) files.push_back(scene.mesh_file);
   return files;
 }
 
-// Refuses, before a long encode, an output that cannot be replaced or is one of the inputs.
-bool check_encode_output(const std::string& input, const std::string& rest_mesh, const std::string& output,
+// Refuses, before a long encode, an output that is one of the inputs, may not be replaced
+// (cli/output_path) or is not a .dcrv file.
+bool check_encode_output(const std::string& input, const std::string& rest_mesh, const std::string& output, bool force,
                          std::string* error) {
-  if (!check_output_path(output, error)) return false;
-  if (!is_one_of(output, input_files(input, rest_mesh))) return true;
-  *error = output + ": the output is one of the input files; refusing to overwrite it";
-  return false;
+  OutputKind kind;
+  return check_output_file(output, force, input_files(input, rest_mesh), error) &&
+         output_kind(output, {OutputKind::Dcrv}, &kind, error);
 }
 
 // Reads and encodes `input`; an allocation that fails anywhere (worker threads included,
@@ -74,7 +77,7 @@ Action add_encode(CLI::App& app) {
     std::string input, output;
     double tolerance = 1e-3;
     bool json = false, no_connectivity = false, keep_face_order = false, reorder_faces = false;
-    bool keep_all_motions = false;
+    bool keep_all_motions = false, force = false;
     InputOptions input_options;
     int threads = 0, effort = EncodeOptions().effort;
     std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto", chunk_frames = "auto";
@@ -105,6 +108,7 @@ Action add_encode(CLI::App& app) {
                  "only files inside its own folder")
       ->check(CLI::ExistingDirectory);
   app.add_option("-o,--output", o->output, "Output .dcrv file")->required();
+  app.add_flag("--force", o->force, "Replace an existing output file");
   app.add_option("--tolerance", o->tolerance, "Max error, fraction of the rest-pose bounding-box diagonal")
       ->check(finite_range(kMinTolerance, 0.5))
       ->capture_default_str();
@@ -173,8 +177,7 @@ Action add_encode(CLI::App& app) {
       std::fprintf(stderr, "dcurve encode: --reorder-faces (the default, deprecated) contradicts --keep-face-order\n");
       return 2;
     }
-    if (!check_output_file(o->output, &err)) return msg->error(err);
-    if (!check_encode_output(o->input, o->input_options.rest_mesh, o->output, &err)) return msg->error(err);
+    if (!check_encode_output(o->input, o->input_options.rest_mesh, o->output, o->force, &err)) return msg->error(err);
     EncodeOptions eo;
     eo.tolerance = o->tolerance;
     eo.connectivity = !o->no_connectivity;
@@ -196,7 +199,9 @@ Action add_encode(CLI::App& app) {
     std::vector<uint8_t> bytes;
     EncodeReport rep;
     if (!read_and_encode(o->input, o->input_options, eo, *msg, &anim, &bytes, &rep, &err)) return msg->error(err);
-    if (!write_file_atomic(o->output, bytes.data(), bytes.size(), &err)) return msg->error(err);
+    OutputFile out;
+    if (!out.open(o->output, o->force, &err) || !out.write(bytes.data(), bytes.size(), &err) || !out.commit(&err))
+      return msg->error(err);
     if (eo.connectivity)
       msg->detail("faces: " + face_order_text(anim.faces.size() / 3, rep.faces_in_coder_order, rep.connectivity_bytes,
                                               rep.coder_order_connectivity_bytes));

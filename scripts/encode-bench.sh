@@ -56,6 +56,7 @@ now() { date +%s.%N; }
 # Runs one encoder (stderr, its progress, to a log); prints "seconds bytes max_error".
 run() {
   local bin=$1 in=$2 out=$3 args=$4 t0 t1
+  rm -f "$out.dcrv"  # a rerun replaces it (encode refuses an existing output without --force)
   t0=$(now)
   # shellcheck disable=SC2086
   "$bin" encode "$in" -o "$out.dcrv" --tolerance "$tolerance" --json $args > "$out.json" 2> "$out.log"

@@ -35,6 +35,7 @@ json_field() { sed -n "s/.*\"$2\":\([-0-9.e+]*\).*/\1/p" "$1"; }
 encode() {
   local in=$1 out=$2 t0 t1
   shift 2
+  rm -f "$out.dcrv"  # a rerun replaces it (encode refuses an existing output without --force)
   t0=$(date +%s.%N)
   "$bin" encode "$in" -o "$out.dcrv" --tolerance "$tolerance" --json -q "$@" > "$out.json"
   t1=$(date +%s.%N)

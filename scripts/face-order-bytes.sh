@@ -29,7 +29,7 @@ json_field() { sed -n "s/.*\"$2\":\([0-9]*\).*/\1/p" "$1"; }
 # Encodes $1 with options $3 into $work/$2.dcrv; prints its "bytes connectivity_bytes".
 encode() {
   # shellcheck disable=SC2086
-  "$dcurve" encode "$corpus/$1" -o "$work/$2.dcrv" --tolerance "$tolerance" --json -q $3 > "$work/$2.json"
+  "$dcurve" encode "$corpus/$1" -o "$work/$2.dcrv" --tolerance "$tolerance" --json -q --force $3 > "$work/$2.json"
   echo "$(json_field "$work/$2.json" bytes) $(json_field "$work/$2.json" connectivity_bytes)"
 }
 

@@ -15,7 +15,7 @@ dir=out/runtime
 mkdir -p "$dir"
 if [ ! -f "$dir/rope-small-600.dcrv" ]; then
   [ -d "$dir/rope-small-600" ] || "$dcurve" simulate --scene rope-small --frames 600 -o "$dir/rope-small-600"
-  "$dcurve" encode "$dir/rope-small-600" -o "$dir/rope-small-600.dcrv" --tolerance 1e-3
+  "$dcurve" encode "$dir/rope-small-600" -o "$dir/rope-small-600.dcrv" --tolerance 1e-3 --force
 fi
 files=("$dir/rope-small-600.dcrv")
 if [ -d "$corpus/horse-gallop" ]; then

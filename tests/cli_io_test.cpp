@@ -13,6 +13,7 @@
 #include "cli_util.h"
 #include "gltf_fixture.h"
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "encoder/io/frames.h"
 #include "test_util.h"
 

@@ -22,6 +22,7 @@
 #include "codec/compress/container_writer.h"
 #include "codec/decompress/container_reader.h"
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "cli_util.h"
 #include "container_bytes.h"
 #include "test_util.h"
@@ -158,7 +159,7 @@ TEST(CliRobustness, NonManifoldEdgesAndPolygonsAreCarriedThroughExactly) {
   const std::vector<uint32_t> fans = {0, 1, 2, 1, 0, 3, 0, 1, 4, 5, 6, 7, 5, 7, 8, 5, 8, 9};
   EXPECT_EQ(back, fans);
   // The default, the face coder's traversal order, keeps the same triangles and windings.
-  r = run_cli("encode " + dir / "frames" + " -o " + dir / "c.dcrv --effort 1");
+  r = run_cli("encode " + dir / "frames" + " -o " + dir / "c.dcrv --effort 1 --force");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   decode_first_frame(dir, &xyz, &back);
   EXPECT_EQ(canonical_triangles(back), canonical_triangles(fans));

@@ -13,6 +13,7 @@
 
 #include "encoder/io/files.h"
 #include "encoder/io/frames.h"
+#include "encoder/io/output_file.h"
 #include "corpus/sim/simulation.h"
 #include "cli_util.h"
 #include "test_util.h"

@@ -14,6 +14,7 @@
 #include "decoder/dcurve.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "test_models.h"
 #include "test_util.h"
 

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "encoder/io/signal_cleanup.h"
 #include "test_util.h"
 
@@ -44,7 +45,7 @@ TEST(Files, LinksAndSpecialFilesAtTheOutputAreRefused) {
   fs::create_directory(dir / "folder.bin");
   std::string err;
   for (const char* name : {"link.bin", "fifo.bin", "folder.bin"}) {
-    EXPECT_FALSE(check_output_path(dir / name, &err)) << name;
+    EXPECT_FALSE(check_output_path(dir / name, true, &err)) << name;
     EXPECT_FALSE(write_file_atomic(dir / name, "x", 1, &err)) << name;
     EXPECT_NE(err.find(name), std::string::npos) << err;
   }
@@ -52,7 +53,7 @@ TEST(Files, LinksAndSpecialFilesAtTheOutputAreRefused) {
   EXPECT_TRUE(fs::is_fifo(dir / "fifo.bin"));
   EXPECT_EQ(file_text(dir / "victim.txt"), "precious");
   EXPECT_EQ(entries(dir), 4u);  // no temporary left
-  EXPECT_TRUE(check_output_path(dir / "absent.bin", &err)) << err;
+  EXPECT_TRUE(check_output_path(dir / "absent.bin", false, &err)) << err;
 }
 
 TEST(Files, SameFileIsFoundThroughLinks) {

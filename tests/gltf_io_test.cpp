@@ -47,10 +47,12 @@ TEST(GltfIo, WrittenFramesReadBack) {
     for (int v = 0; v < 16; ++v) anim.frames.back().insert(anim.frames.back().end(), {float(v % 4), float(v / 4), 0.1f * f * v});
   }
   for (const char* name : {"w.glb", "w.gltf"}) {
-    GltfWriter writer(anim.vertex_count, anim.faces, uint32_t(anim.frames.size()), anim.frame_rate);
-    for (const auto& frame : anim.frames) writer.add_frame(frame.data());
+    const bool binary = std::string(name) == "w.glb";
+    GltfWriter writer(anim.vertex_count, anim.faces, uint32_t(anim.frames.size()), anim.frame_rate, binary);
     std::string err;
-    ASSERT_TRUE(writer.write(dir / name, &err)) << err;
+    ASSERT_TRUE(writer.open(dir / name, false, &err)) << err;
+    for (const auto& frame : anim.frames) ASSERT_TRUE(writer.add_frame(frame.data(), &err)) << err;
+    ASSERT_TRUE(writer.finish(&err)) << err;
     Animation back;
     ASSERT_TRUE(read_gltf_animation(dir / name, -1, &back, &err)) << err;
     ASSERT_EQ(back.frames.size(), anim.frames.size()) << name;

@@ -35,7 +35,7 @@ class Interop : public ::testing::Test {
   // With the exact index buffer kept, so every output must carry the input's face list.
   void encode(const std::string& input, const std::string& extra = "") {
     CommandResult r = run_cli("encode " + input + " -o " + dir_ / "x.dcrv --tolerance 1e-3 --grid 2 --low-rank off "
-                              "--keep-face-order -q" + extra);
+                              "--keep-face-order -q --force" + extra);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(r.output, "");  // -q: nothing on success
   }
@@ -95,7 +95,7 @@ TEST_F(Interop, IndependentPc2AndMddInAndOut) {
     EXPECT_NEAR(encoded_frame_rate(), kind == "mdd" ? 24.0 : 30.0, 1e-3) << kind;
     for (const std::string out : {"pc2", "mdd"}) {
       const std::string decoded = dir_ / ("out." + out);
-      CommandResult d = run_cli("decode " + dir_ / "x.dcrv -o " + decoded);
+      CommandResult d = run_cli("decode " + dir_ / "x.dcrv -o " + decoded + " --force");
       ASSERT_EQ(d.exit_code, 0) << d.output;
       CommandResult r = run_node("point_cache.mjs read " + out + " " + decoded + " " + dir_ / "back.bin");
       ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -112,7 +112,7 @@ TEST_F(Interop, IndependentPc2AndMddInAndOut) {
     ASSERT_TRUE(read_mesh(dir_ / (kind + ".obj"), &xyz, &faces, &err)) << err;
     EXPECT_EQ(faces, anim_.faces);
   }
-  CommandResult fps = run_cli("encode " + dir_ / "in.pc2 --mesh " + rest + " -o " + dir_ / "x.dcrv --grid 2 --low-rank off --fps 60");
+  CommandResult fps = run_cli("encode " + dir_ / "in.pc2 --mesh " + rest + " -o " + dir_ / "x.dcrv --grid 2 --low-rank off --fps 60 --force");
   ASSERT_EQ(fps.exit_code, 0) << fps.output;
   EXPECT_NEAR(encoded_frame_rate(), 60.0, 1e-9);
 }

@@ -13,6 +13,7 @@
 
 #include "cli_util.h"
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "encoder/io/frames.h"
 
 namespace dcurve::test {

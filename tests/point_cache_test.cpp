@@ -2,10 +2,10 @@
 // header's rate and start, and a damaged file is refused with its name, never read short.
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <fstream>
 
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 #include "encoder/io/point_cache.h"
 #include "test_util.h"
 
@@ -22,12 +22,13 @@ Animation two_frame_triangle() {
 bool write_cache(const std::string& path, const Animation& anim, double fps) {
   PointCacheKind kind;
   if (!point_cache_kind(path, &kind)) return false;
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) return false;
-  PointCacheWriter w(kind, f, anim.vertex_count);
-  bool ok = w.write_header(uint32_t(anim.frames.size()), fps);
-  for (const auto& frame : anim.frames) ok = ok && w.write_frame(frame.data());
-  return std::fclose(f) == 0 && ok;
+  OutputFile out;
+  std::string err;
+  if (!out.open(path, true, &err)) return false;
+  PointCacheWriter w(kind, &out, anim.vertex_count);
+  bool ok = w.write_header(uint32_t(anim.frames.size()), fps, &err);
+  for (const auto& frame : anim.frames) ok = ok && w.write_frame(frame.data(), &err);
+  return ok && out.commit(&err);
 }
 
 TEST(PointCache, WrittenFramesReadBackExactly) {

@@ -35,6 +35,23 @@ export async function loadDcurve() {
   return { open: (data) => new Decoder(module, data) };
 }
 
+const INVALID = 2; // DCURVE_ERROR_INVALID_ARGUMENT
+
+// The bytes of a file given as an ArrayBuffer or a typed array / DataView over one.
+function asBytes(data) {
+  if (data instanceof Uint8Array) return data;
+  if (data instanceof ArrayBuffer) return new Uint8Array(data);
+  if (ArrayBuffer.isView(data)) return new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
+  throw new DcurveError("open needs the file's bytes: an ArrayBuffer or a typed array", INVALID);
+}
+
+// A Float32Array of at least n values: anything shorter would read stale wasm memory or
+// throw a RangeError half-way.
+function floats(array, n, what) {
+  if (!(array instanceof Float32Array) || array.length < n)
+    throw new DcurveError(`${what} must be a Float32Array of at least ${n} values (vertexCount * 3)`, INVALID);
+}
+
 // Runs a call into the module; an abort (out of memory: exceptions are not caught in the
 // wasm build) leaves the module unusable and becomes a DcurveError.
 function guarded(call) {
@@ -57,7 +74,7 @@ class Decoder {
 
   constructor(module, data) {
     this.#m = module;
-    const bytes = data instanceof Uint8Array ? data : new Uint8Array(data);
+    const bytes = asBytes(data);
     try {
       guarded(() => this.#open(bytes));
     } catch (e) {
@@ -99,7 +116,7 @@ class Decoder {
   }
 
   #live() {
-    if (!this.#decoder) throw new DcurveError("the decoder is closed", 2);
+    if (!this.#decoder) throw new DcurveError("the decoder is closed", INVALID);
     return this.#m;
   }
 
@@ -124,18 +141,20 @@ class Decoder {
 
   // Writes vertexCount * 3 positions at t in [0, 1] (clamped) into `out` (a Float32Array).
   evaluate(t, out) {
+    if (typeof t !== "number" || Number.isNaN(t)) throw new DcurveError(`evaluate needs a time t in [0, 1], not ${String(t)}`, INVALID);
     return this.#evaluate(out, () => this.#m._dcurve_cursor_evaluate(this.#cursor, t, this.#xyz, this.#error, ERROR_BYTES));
   }
 
   // Writes input frame f exactly (clamped to [0, frameCount)).
   evaluateFrame(f, out) {
+    if (!Number.isInteger(f)) throw new DcurveError(`evaluateFrame needs a frame number, not ${String(f)}`, INVALID);
     return this.#evaluate(out, () => this.#m._dcurve_cursor_evaluate_frame(this.#cursor, f, this.#xyz, this.#error, ERROR_BYTES));
   }
 
   #evaluate(out, call) {
     const m = this.#live();
     const n = this.#values;
-    if (!(out instanceof Float32Array) || out.length < n) throw new DcurveError(`evaluate needs a Float32Array of ${n} values`, 2);
+    floats(out, n, "the output");
     this.#check(guarded(call));
     out.set(m.HEAPF32.subarray(this.#xyz >> 2, (this.#xyz >> 2) + n));
     return out;
@@ -145,6 +164,8 @@ class Decoder {
   computeNormals(xyz, out) {
     const m = this.#live();
     const n = this.#values;
+    floats(xyz, n, "the positions");
+    floats(out, n, "the output");
     m.HEAPF32.set(xyz.subarray(0, n), this.#xyz >> 2);
     if (guarded(() => m._dcurve_compute_normals(this.#decoder, this.#xyz, this.#normals)) !== 0)
       throw new DcurveError("the file has no connectivity: no normals", 2);

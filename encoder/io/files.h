@@ -1,4 +1,4 @@
-// Whole-file reads and crash-safe writes.
+// Whole-file reads, extensions, and which files are the same (writes: encoder/io/output_file.h).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -22,18 +22,8 @@ const char* file_type_name(unsigned st_mode);
 // The file name's extension with its dot, lower case (".obj" for "a/B.OBJ"; "" when none).
 std::string lowercase_extension(const std::string& path);
 
-// Whether `path` may be replaced by a new regular file: it is absent or a regular file. A
-// symbolic link, FIFO, device, socket or folder there is refused (false, error names it).
-bool check_output_path(const std::string& path, std::string* error);
-
 // Whether `path` exists and is the same file as one of `inputs` (links followed); refusing
 // it keeps a command from overwriting what it reads.
 bool is_one_of(const std::string& path, const std::vector<std::string>& inputs);
-
-// Writes to a new temporary file beside `path` (random name, created exclusively, never
-// through a link) and renames it over `path`, so readers never see a partial file, a planted
-// link is never followed and a failed write leaves nothing behind. `path` must pass
-// check_output_path.
-bool write_file_atomic(const std::string& path, const void* data, size_t size, std::string* error);
 
 }  // namespace dcurve

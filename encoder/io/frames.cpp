@@ -8,6 +8,8 @@
 
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
+#include "encoder/io/output_folder.h"
 #include "encoder/io/frame_order.h"
 #include "encoder/io/mesh_writer.h"
 #include "encoder/io/polygon_reader.h"
@@ -83,14 +85,15 @@ bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uin
 }
 
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
-                const std::vector<uint32_t>& faces, std::string* error) {
+                const std::vector<uint32_t>& faces, std::string* error, bool replace) {
   const size_t bad = find_degenerate_triangle(faces);
   if (bad != SIZE_MAX)
     return fail(error, path + ": triangle " + std::to_string(bad) + " uses a vertex twice; degenerate triangles are not written");
   std::string bytes;
   if (!mesh_file_bytes(lowercase_extension(path), xyz, vertex_count, faces, &bytes))
     return fail(error, path + ": cannot write mesh: the extension is not .obj, .off or .ply");
-  return write_file_atomic(path, bytes.data(), bytes.size(), error);
+  OutputFile out;
+  return out.open(path, replace, error) && out.write(bytes.data(), bytes.size(), error) && out.commit(error);
 }
 
 bool face_repeats_vertex(const uint32_t* ids, size_t n) {
@@ -164,18 +167,28 @@ bool read_frame_folder(const std::string& dir, Animation* anim, std::string* err
   return true;
 }
 
+std::string frame_file_name(size_t index, const std::string& ext) {
+  char name[64];
+  std::snprintf(name, sizeof name, "frame_%05zu.%s", index, ext.c_str());
+  return name;
+}
+
+bool write_folder_frame(OutputFolder* folder, size_t index, const std::string& ext, const float* xyz,
+                        uint32_t vertex_count, const std::vector<uint32_t>& faces, std::string* error) {
+  const std::string name = frame_file_name(index, ext);
+  std::string bytes;
+  if (!mesh_file_bytes(lowercase_extension(name), xyz, vertex_count, faces, &bytes))
+    return fail(error, name + ": cannot write mesh: the extension is not .obj, .off or .ply");
+  return folder->write_file(name, bytes.data(), bytes.size(), error);
+}
+
 bool write_frame_folder(const std::string& dir, const Animation& anim, const std::string& ext,
                         std::string* error) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) return fail(error, dir + ": cannot create folder: " + ec.message());
-  char name[64];
-  for (size_t f = 0; f < anim.frames.size(); ++f) {
-    std::snprintf(name, sizeof name, "frame_%05zu.%s", f, ext.c_str());
-    if (!write_mesh((fs::path(dir) / name).string(), anim.frames[f].data(), anim.vertex_count, anim.faces, error))
-      return false;
-  }
-  return true;
+  OutputFolder out;
+  if (!out.open(dir, true, error)) return false;
+  for (size_t f = 0; f < anim.frames.size(); ++f)
+    if (!write_folder_frame(&out, f, ext, anim.frames[f].data(), anim.vertex_count, anim.faces, error)) return false;
+  return out.commit(error);
 }
 
 }  // namespace dcurve

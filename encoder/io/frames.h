@@ -11,6 +11,8 @@
 
 namespace dcurve {
 
+class OutputFolder;
+
 // Reads one mesh (a regular file; a FIFO or device is refused by name). Polygons become fans of triangles from their first vertex; non-manifold
 // faces are kept as they are. Refused, with the file named: a vertex count or face count that
 // differs from the file's own, a face with fewer than 3 vertices, an index out of range or a
@@ -19,10 +21,19 @@ bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uin
                std::string* error);
 
 // Writes one mesh; the format follows the extension (.obj, .ply, .off; encoder/io/mesh_writer.h).
-// Written through write_file_atomic, so a failure leaves no partial file. A degenerate
-// triangle is refused (no reader would take the file back).
+// Written through an OutputFile, so a failure leaves no partial file; a regular file at `path`
+// is replaced only when `replace`. A degenerate triangle is refused (no reader would take the
+// file back).
 bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count,
-                const std::vector<uint32_t>& faces, std::string* error);
+                const std::vector<uint32_t>& faces, std::string* error, bool replace = true);
+
+// "frame_00012.obj" for index 12 and extension "obj": the names of a folder output.
+std::string frame_file_name(size_t index, const std::string& ext);
+
+// Writes frame `index` (frame_file_name, format `ext`: "obj", "ply" or "off") into a folder
+// being written.
+bool write_folder_frame(OutputFolder* folder, size_t index, const std::string& ext, const float* xyz,
+                        uint32_t vertex_count, const std::vector<uint32_t>& faces, std::string* error);
 
 // Folders carry no frame rate: their frame numbers count at this rate, so a folder whose
 // numbers step by 2 holds 15 frames per second.
@@ -39,7 +50,8 @@ bool list_frame_files(const std::string& dir, std::vector<std::string>* files, s
 // the step between the frame numbers.
 bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error);
 
-// Writes DIR/frame_00000.EXT, frame_00001.EXT, ... (EXT = "obj" or "ply"); creates DIR.
+// Writes DIR/frame_00000.EXT, frame_00001.EXT, ... (EXT = "obj" or "ply") through an
+// OutputFolder: DIR is created, or its frames are replaced as a whole.
 bool write_frame_folder(const std::string& dir, const Animation& anim, const std::string& ext,
                         std::string* error);
 

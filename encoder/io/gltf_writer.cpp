@@ -1,165 +1,253 @@
 #include "encoder/io/gltf_writer.h"
 
-#include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstring>
-#include <sstream>
 
 #include "codec/common/error.h"
-#include "encoder/io/files.h"
 
 namespace dcurve {
 namespace {
 
-// Far below the 4 GiB a GLB chunk can hold, and what a decode may reasonably hold in memory.
+using Json = nlohmann::ordered_json;
+
+// Far below the 4 GiB a GLB chunk can hold, and what a decode may reasonably write.
 constexpr uint64_t kMaxGltfBytes = uint64_t(1) << 30;
+// The longest text a double takes in the JSON: stands for every bound while the size of the
+// JSON is reserved, so the real bounds always fit.
+constexpr double kLongestNumber = -2.2250738585072014e-308;
+constexpr size_t kFlushBytes = size_t(3) << 18;  // a multiple of 3: base64 flushes whole groups
+constexpr char kDataUri[] = "data:application/octet-stream;base64,";
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963, kFloat = 5126, kUnsignedInt = 5125;
 
-// Appends `count` elements of `bytes` to the one buffer as a view and an accessor over it;
-// returns the accessor's index. min/max are required for positions and animation inputs.
-struct Builder {
-  tinygltf::Model model;
-  std::vector<unsigned char>& data() { return model.buffers[0].data; }
+uint64_t base64_bytes(uint64_t bytes) { return (bytes + 2) / 3 * 4; }
+uint64_t padded4(uint64_t n) { return (n + 3) & ~uint64_t(3); }
 
-  int add_view(const void* src, size_t bytes, int target) {
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = data().size();
-    v.byteLength = bytes;
-    v.target = target;
-    // Vertex attributes state their stride: the validator requires it when several
-    // accessors (the morph targets) share a view.
-    if (target == TINYGLTF_TARGET_ARRAY_BUFFER) v.byteStride = 12;
-    const auto* p = static_cast<const unsigned char*>(src);
-    data().insert(data().end(), p, p + bytes);
-    model.bufferViews.push_back(v);
-    return int(model.bufferViews.size() - 1);
+void append_base64(const uint8_t* p, size_t size, std::string* out) {
+  static const char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  for (size_t i = 0; i < size; i += 3) {
+    const uint32_t n = uint32_t(p[i]) << 16 | (i + 1 < size ? uint32_t(p[i + 1]) << 8 : 0) | (i + 2 < size ? p[i + 2] : 0);
+    out->push_back(kAlphabet[n >> 18 & 63]);
+    out->push_back(kAlphabet[n >> 12 & 63]);
+    out->push_back(i + 1 < size ? kAlphabet[n >> 6 & 63] : '=');
+    out->push_back(i + 2 < size ? kAlphabet[n & 63] : '=');
   }
+}
 
-  int add_accessor(int view, size_t offset, size_t count, int type, int component, std::vector<double> min = {},
-                   std::vector<double> max = {}) {
-    tinygltf::Accessor a;
-    a.bufferView = view;
-    a.byteOffset = offset;
-    a.count = count;
-    a.type = type;
-    a.componentType = component;
-    a.minValues = std::move(min);
-    a.maxValues = std::move(max);
-    model.accessors.push_back(a);
-    return int(model.accessors.size() - 1);
+void store_u32(uint8_t* p, uint32_t v) { std::memcpy(p, &v, 4); }  // little-endian targets, as GLB
+
+// The byte layout of the one buffer: where each part starts.
+struct Layout {
+  uint64_t indices = 0, base, targets, times, weights, end;
+  Layout(uint32_t vertices, size_t face_ids, uint32_t frame_count) {
+    const uint64_t frames = frame_count ? frame_count : 1;
+    base = 4 * uint64_t(face_ids);
+    targets = base + 12 * uint64_t(vertices);
+    times = targets + 12 * uint64_t(vertices) * (frames - 1);
+    weights = times + (frames > 1 ? 4 * frames : 0);  // one frame: no animation
+    end = weights + 4 * uint64_t(frames) * (frames - 1);
   }
 };
 
-void bounds(const float* xyz, size_t count, std::vector<double>* lo, std::vector<double>* hi) {
-  lo->assign(3, 0.0);
-  hi->assign(3, 0.0);
-  for (size_t i = 0; i < count; ++i)
-    for (int a = 0; a < 3; ++a) {
-      const double x = xyz[3 * i + a];
-      (*lo)[a] = i ? std::min((*lo)[a], x) : x;
-      (*hi)[a] = i ? std::max((*hi)[a], x) : x;
-    }
+Json view(uint64_t offset, uint64_t length, int target) {
+  Json v = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}};
+  // Vertex attributes state their stride: the validator requires it when several accessors
+  // (the morph targets) share a view.
+  if (target == kArrayBuffer) v["byteStride"] = 12;
+  if (target) v["target"] = target;
+  return v;
 }
 
-int add_positions(Builder* b, const float* xyz, uint32_t vertices, int view, size_t offset) {
-  std::vector<double> lo, hi;
-  bounds(xyz, vertices, &lo, &hi);
-  return b->add_accessor(view, offset, vertices, TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT, lo, hi);
+Json accessor(int view, uint64_t offset, uint64_t count, const char* type, int component) {
+  return {{"bufferView", view}, {"byteOffset", offset}, {"componentType", component}, {"count", count}, {"type", type}};
 }
 
-// The weights animation: key i at i / fps turns target i - 1 fully on (key 0: none).
-void add_weights_animation(Builder* b, uint32_t frames, double fps) {
-  const size_t targets = frames - 1;
-  std::vector<float> times(frames), weights(size_t(frames) * targets, 0.0f);
-  for (uint32_t i = 0; i < frames; ++i) times[i] = float(i / fps);
-  for (uint32_t i = 1; i < frames; ++i) weights[size_t(i) * targets + (i - 1)] = 1.0f;
-  const int tv = b->add_view(times.data(), 4 * times.size(), 0);
-  const int wv = b->add_view(weights.data(), 4 * weights.size(), 0);
-  tinygltf::AnimationSampler s;
-  s.input = b->add_accessor(tv, 0, frames, TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_FLOAT, {times.front()}, {times.back()});
-  s.output = b->add_accessor(wv, 0, weights.size(), TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_FLOAT);
-  s.interpolation = "LINEAR";
-  tinygltf::AnimationChannel c;
-  c.sampler = 0;
-  c.target_node = 0;
-  c.target_path = "weights";
-  tinygltf::Animation anim;
-  anim.name = "frames";
-  anim.samplers.push_back(s);
-  anim.channels.push_back(c);
-  b->model.animations.push_back(anim);
+Json position_accessor(int view, uint64_t offset, uint32_t count, const std::array<float, 6>& b, bool placeholders) {
+  Json a = accessor(view, offset, count, "VEC3", kFloat);
+  a["min"] = Json::array();
+  a["max"] = Json::array();
+  for (int k = 0; k < 3; ++k) {
+    a["min"].push_back(placeholders ? kLongestNumber : double(b[k]));
+    a["max"].push_back(placeholders ? kLongestNumber : double(b[3 + k]));
+  }
+  return a;
 }
 
 }  // namespace
 
-GltfWriter::GltfWriter(uint32_t vertex_count, std::vector<uint32_t> faces, uint32_t frame_count, double frame_rate)
+GltfWriter::GltfWriter(uint32_t vertex_count, std::vector<uint32_t> faces, uint32_t frame_count, double frame_rate,
+                       bool binary)
     : vertex_count_(vertex_count), frame_count_(frame_count), frame_rate_(frame_rate > 0 ? frame_rate : 30.0),
-      faces_(std::move(faces)) {
-  // Held whole (the file holds every frame): reserved once so growth never doubles it.
-  if (frame_count > 1) targets_.reserve(size_t(frame_count - 1) * vertex_count * 3);
+      binary_(binary), faces_(std::move(faces)) {}
+
+uint64_t GltfWriter::buffer_bytes() const { return Layout(vertex_count_, faces_.size(), frame_count_).end; }
+
+// Accessors and views in the buffer's order: indices, frame 0, the targets, times, weights.
+std::string GltfWriter::json(bool placeholders) const {
+  const Layout at(vertex_count_, faces_.size(), frame_count_);
+  const uint64_t frame_bytes = 12 * uint64_t(vertex_count_);
+  Json views = Json::array(), accessors = Json::array();
+  Json primitive = {{"attributes", Json::object()}, {"mode", faces_.empty() ? 0 : 4}};
+  if (!faces_.empty()) {
+    views.push_back(view(at.indices, at.base - at.indices, kElementArrayBuffer));
+    accessors.push_back(accessor(int(views.size() - 1), 0, faces_.size(), "SCALAR", kUnsignedInt));
+    primitive["indices"] = accessors.size() - 1;
+  }
+  views.push_back(view(at.base, frame_bytes, kArrayBuffer));
+  accessors.push_back(position_accessor(int(views.size() - 1), 0, vertex_count_, bounds_.empty() ? std::array<float, 6>{} : bounds_[0], placeholders));
+  primitive["attributes"]["POSITION"] = accessors.size() - 1;
+  Json mesh = {{"name", "dcurve"}};
+  Json doc = {{"asset", {{"version", "2.0"}, {"generator", "dcurve"}}}};
+  if (frame_count_ > 1) {
+    views.push_back(view(at.targets, at.times - at.targets, kArrayBuffer));
+    const int tv = int(views.size() - 1);
+    primitive["targets"] = Json::array();
+    for (uint32_t t = 1; t < frame_count_; ++t) {
+      const auto b = t < bounds_.size() ? bounds_[t] : std::array<float, 6>{};
+      accessors.push_back(position_accessor(tv, (t - 1) * frame_bytes, vertex_count_, b, placeholders));
+      primitive["targets"].push_back({{"POSITION", accessors.size() - 1}});
+    }
+    mesh["weights"] = std::vector<double>(frame_count_ - 1, 0.0);
+    // The weights animation: key i at i / fps turns target i - 1 fully on (key 0: none).
+    views.push_back(view(at.times, at.weights - at.times, 0));
+    Json times = accessor(int(views.size() - 1), 0, frame_count_, "SCALAR", kFloat);
+    times["min"] = {placeholders ? kLongestNumber : 0.0};
+    times["max"] = {placeholders ? kLongestNumber : double(float((frame_count_ - 1) / frame_rate_))};
+    accessors.push_back(times);
+    views.push_back(view(at.weights, at.end - at.weights, 0));
+    accessors.push_back(accessor(int(views.size() - 1), 0, uint64_t(frame_count_) * (frame_count_ - 1), "SCALAR", kFloat));
+    Json sampler = {{"input", accessors.size() - 2}, {"output", accessors.size() - 1}, {"interpolation", "LINEAR"}};
+    Json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
+    doc["animations"] = Json::array({{{"name", "frames"}, {"samplers", {sampler}}, {"channels", {channel}}}});
+  }
+  mesh["primitives"] = Json::array({primitive});
+  doc["bufferViews"] = views;
+  doc["accessors"] = accessors;
+  doc["meshes"] = Json::array({mesh});
+  doc["nodes"] = Json::array({{{"mesh", 0}}});
+  doc["scenes"] = Json::array({{{"nodes", {0}}}});
+  doc["scene"] = 0;
+  if (binary_) doc["buffers"] = Json::array({{{"byteLength", at.end}}});
+  return doc.dump();
 }
 
-bool GltfWriter::check_size(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, std::string* error) {
-  const uint64_t n = frame_count;
-  const uint64_t bytes = 4 * uint64_t(face_ids) + 12 * uint64_t(vertex_count) * n + 4 * n * n;
+uint64_t GltfWriter::file_bytes(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, bool binary) {
+  GltfWriter w(vertex_count, std::vector<uint32_t>(face_ids), frame_count, 30, binary);
+  const uint64_t buffer = w.buffer_bytes();
+  // Past the limit on the buffer alone: no need to build a JSON of millions of targets.
+  if (buffer > kMaxGltfBytes) return binary ? buffer : base64_bytes(buffer);
+  const uint64_t json = w.json(true).size();
+  if (binary) return 12 + 8 + padded4(json) + 8 + buffer;
+  // {"buffers":[{"byteLength":N,"uri":"data:...,BASE64"}], then the JSON after its "{"
+  return std::strlen("{\"buffers\":[{\"byteLength\":,\"uri\":\"") + std::to_string(buffer).size() +
+         std::strlen(kDataUri) + base64_bytes(buffer) + std::strlen("\"}],") + json - 1;
+}
+
+bool GltfWriter::check_size(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, bool binary,
+                            std::string* error) {
+  const uint64_t bytes = file_bytes(vertex_count, face_ids, frame_count, binary);
   if (bytes > kMaxGltfBytes)
-    return fail(error, std::to_string(frame_count) + " frames of " + std::to_string(vertex_count) +
-                           " vertices need " + std::to_string(bytes >> 20) +
-                           " MiB as glTF morph targets, more than the 1024 MiB dcurve writes: ask for fewer --frames, "
-                           "or write .pc2/.mdd or a folder");
+    return fail(error, std::to_string(frame_count) + " frames of " + std::to_string(vertex_count) + " vertices need " +
+                           std::to_string(bytes >> 20) + " MiB as glTF morph targets" +
+                           (binary ? "" : " in base64") +
+                           ", more than the 1024 MiB dcurve writes: ask for fewer --frames, or write .pc2/.mdd or a folder");
   return true;
 }
 
-void GltfWriter::add_frame(const float* xyz) {
-  const size_t values = size_t(vertex_count_) * 3;
-  if (frames_added_++ == 0) {
-    base_.assign(xyz, xyz + values);
-    return;
+bool GltfWriter::open(const std::string& path, bool replace, std::string* error) {
+  if (frame_count_ == 0) return fail(error, path + ": a glTF output needs at least one frame");
+  if (!check_size(vertex_count_, faces_.size(), frame_count_, binary_, error)) return fail(error, path + ": " + *error);
+  if (!out_.open(path, replace, error)) return false;
+  const uint64_t buffer = buffer_bytes();
+  std::string head;
+  if (binary_) {
+    json_room_ = padded4(json(true).size());
+    std::vector<uint8_t> h(20);
+    std::memcpy(h.data(), "glTF", 4);
+    store_u32(&h[4], 2);
+    store_u32(&h[8], uint32_t(12 + 8 + json_room_ + 8 + buffer));
+    store_u32(&h[12], uint32_t(json_room_));
+    std::memcpy(&h[16], "JSON", 4);
+    head.assign(h.begin(), h.end());
+    head.append(json_room_, ' ');  // filled in by finish()
+    std::vector<uint8_t> bin(8);
+    store_u32(&bin[0], uint32_t(buffer));
+    std::memcpy(&bin[4], "BIN\0", 4);
+    head.append(bin.begin(), bin.end());
+  } else {
+    head = "{\"buffers\":[{\"byteLength\":" + std::to_string(buffer) + ",\"uri\":\"" + kDataUri;
   }
-  for (size_t i = 0; i < values; ++i) targets_.push_back(xyz[i] - base_[i]);
+  if (!out_.write(head.data(), head.size(), error)) return false;
+  return put(faces_.data(), 4 * faces_.size(), error);
 }
 
-bool GltfWriter::write(const std::string& path, std::string* error) const {
-  if (frames_added_ != frame_count_ || frame_count_ == 0) return fail(error, path + ": frames missing for the glTF output");
-  Builder b;
-  b.model.asset.version = "2.0";
-  b.model.asset.generator = "dcurve";
-  b.model.buffers.emplace_back();
-  tinygltf::Primitive prim;
-  prim.mode = faces_.empty() ? TINYGLTF_MODE_POINTS : TINYGLTF_MODE_TRIANGLES;
-  if (!faces_.empty()) {
-    const int iv = b.add_view(faces_.data(), 4 * faces_.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    prim.indices = b.add_accessor(iv, 0, faces_.size(), TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+bool GltfWriter::put(const void* data, size_t size, std::string* error) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  pending_.insert(pending_.end(), p, p + size);
+  return pending_.size() < kFlushBytes || flush(false, error);
+}
+
+// Writes the pending bytes (base64: all whole groups of 3, every byte when `last`).
+bool GltfWriter::flush(bool last, std::string* error) {
+  if (binary_) {
+    const bool ok = out_.write(pending_.data(), pending_.size(), error);
+    pending_.clear();
+    return ok;
   }
-  const size_t frame_bytes = 12 * size_t(vertex_count_);
-  prim.attributes["POSITION"] = add_positions(&b, base_.data(), vertex_count_,
-                                              b.add_view(base_.data(), frame_bytes, TINYGLTF_TARGET_ARRAY_BUFFER), 0);
-  tinygltf::Mesh mesh;
-  mesh.name = "dcurve";
-  if (frame_count_ > 1) {
-    const int tv = b.add_view(targets_.data(), 4 * targets_.size(), TINYGLTF_TARGET_ARRAY_BUFFER);
-    for (uint32_t t = 0; t + 1 < frame_count_; ++t)
-      prim.targets.push_back({{"POSITION", add_positions(&b, targets_.data() + t * size_t(vertex_count_) * 3,
-                                                         vertex_count_, tv, t * frame_bytes)}});
-    mesh.weights.assign(frame_count_ - 1, 0.0);
-    add_weights_animation(&b, frame_count_, frame_rate_);
+  const size_t whole = last ? pending_.size() : pending_.size() / 3 * 3;
+  std::string text;
+  text.reserve(base64_bytes(whole));
+  append_base64(pending_.data(), whole, &text);
+  pending_.erase(pending_.begin(), pending_.begin() + whole);
+  return out_.write(text.data(), text.size(), error);
+}
+
+bool GltfWriter::add_frame(const float* xyz, std::string* error) {
+  if (frames_added_ >= frame_count_) return fail(error, out_.path() + ": more frames than the glTF output declares");
+  const size_t values = size_t(vertex_count_) * 3;
+  std::vector<float> target(xyz, xyz + values);
+  if (frames_added_++ == 0) base_ = target;
+  else
+    for (size_t i = 0; i < values; ++i) target[i] -= base_[i];
+  std::array<float, 6> b{};
+  for (size_t i = 0; i < values; ++i) {
+    const int a = int(i % 3);
+    b[a] = i < 3 ? target[i] : std::min(b[a], target[i]);
+    b[3 + a] = i < 3 ? target[i] : std::max(b[3 + a], target[i]);
   }
-  mesh.primitives.push_back(prim);
-  b.model.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  b.model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  b.model.scenes.push_back(scene);
-  b.model.defaultScene = 0;
-  std::ostringstream out;
-  tinygltf::TinyGLTF writer;
-  const bool binary = lowercase_extension(path) == ".glb";
-  if (!writer.WriteGltfSceneToStream(&b.model, out, !binary, binary)) return fail(error, path + ": cannot build glTF");
-  const std::string bytes = out.str();
-  return write_file_atomic(path, bytes.data(), bytes.size(), error);
+  bounds_.push_back(b);
+  return put(target.data(), 4 * values, error);
+}
+
+bool GltfWriter::write_animation_data(std::string* error) {
+  if (frame_count_ < 2) return true;
+  std::vector<float> row(frame_count_);
+  for (uint32_t i = 0; i < frame_count_; ++i) row[i] = float(i / frame_rate_);
+  if (!put(row.data(), 4 * row.size(), error)) return false;
+  row.assign(frame_count_ - 1, 0.0f);
+  for (uint32_t i = 0; i < frame_count_; ++i) {  // key i: target i - 1 on
+    if (i > 0) row[i - 1] = 1.0f;
+    if (!put(row.data(), 4 * row.size(), error)) return false;
+    if (i > 0) row[i - 1] = 0.0f;
+  }
+  return true;
+}
+
+bool GltfWriter::finish(std::string* error) {
+  if (frames_added_ != frame_count_) return fail(error, out_.path() + ": frames missing for the glTF output");
+  if (!write_animation_data(error) || !flush(true, error)) return false;
+  std::string text = json(false);
+  if (binary_) {
+    if (text.size() > json_room_) return fail(error, out_.path() + ": internal error: the glTF JSON outgrew its room");
+    text.resize(json_room_, ' ');
+    if (!out_.write_at(20, text.data(), text.size(), error)) return false;
+  } else {
+    text = "\"}]," + text.substr(1);
+    if (!out_.write(text.data(), text.size(), error)) return false;
+  }
+  if (out_.bytes_written() > kMaxGltfBytes) return fail(error, out_.path() + ": internal error: over the glTF size limit");
+  return out_.commit(error);
 }
 
 }  // namespace dcurve

@@ -1,34 +1,57 @@
-// glTF 2.0 out (.glb or .gltf, written by tinygltf): frame 0 as the mesh, every later frame
-// as a morph target (its offset from frame 0), and an animation of the weights with one key
-// per frame, so standard viewers play the frames in order and blend linearly between them.
+// glTF 2.0 out (.glb, or .gltf with the buffer embedded as base64): frame 0 as the mesh,
+// every later frame as a morph target (its offset from frame 0), and an animation of the
+// weights with one key per frame, so standard viewers play the frames in order and blend
+// linearly between them.
+//
+// Streamed in bounded memory: every byte offset follows from the counts, so the buffer is
+// written as the frames arrive (a .glb reserves room for its JSON, whose only unknowns are
+// the targets' bounds, and fills it in at the end; a .gltf puts its buffer first in the JSON
+// and the rest after it). Memory holds frame 0, one frame and a few numbers per frame.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "encoder/io/output_file.h"
 
 namespace dcurve {
 
 class GltfWriter {
  public:
-  // Frames arrive in order through add_frame; `faces` empty writes a point primitive.
-  GltfWriter(uint32_t vertex_count, std::vector<uint32_t> faces, uint32_t frame_count, double frame_rate);
+  // Frames arrive in order through add_frame; `faces` empty writes a point primitive;
+  // `binary`: .glb, else .gltf.
+  GltfWriter(uint32_t vertex_count, std::vector<uint32_t> faces, uint32_t frame_count, double frame_rate, bool binary);
 
-  // False (with a message) when the file would be too large for one glTF buffer: every frame
-  // is a full target and the weights grow with frames squared. Checked before any decoding.
-  static bool check_size(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, std::string* error);
+  // The most bytes the file can take (exact but for the bounds' digits), and false with a
+  // message when that is over the 1 GiB dcurve writes (every frame is a full target, the
+  // weights grow with frames squared, base64 adds a third). Checked before any decoding.
+  static uint64_t file_bytes(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, bool binary);
+  static bool check_size(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, bool binary, std::string* error);
 
-  void add_frame(const float* xyz);
-
-  // Writes the file atomically; the format follows the extension (.glb binary, else .gltf
-  // with the buffer embedded).
-  bool write(const std::string& path, std::string* error) const;
+  // Creates the output (OutputFile) and writes what precedes frame 0.
+  bool open(const std::string& path, bool replace, std::string* error);
+  bool add_frame(const float* xyz, std::string* error);
+  // Writes the animation and the JSON, then moves the file into place.
+  bool finish(std::string* error);
 
  private:
+  bool put(const void* data, size_t size, std::string* error);
+  bool flush(bool last, std::string* error);
+  bool write_animation_data(std::string* error);
+  std::string json(bool placeholders) const;
+  uint64_t buffer_bytes() const;
+
   uint32_t vertex_count_, frame_count_;
   double frame_rate_;
+  bool binary_;
   std::vector<uint32_t> faces_;
-  std::vector<float> base_, targets_;  // frame 0; frames 1.. minus frame 0
+  std::vector<float> base_;                     // frame 0
+  std::vector<std::array<float, 6>> bounds_;    // per frame: min xyz, max xyz (of the target)
   uint32_t frames_added_ = 0;
+  uint64_t json_room_ = 0;                      // .glb: bytes reserved for the JSON
+  OutputFile out_;
+  std::vector<uint8_t> pending_;                // binary bytes not written yet (base64: groups of 3)
 };
 
 }  // namespace dcurve

@@ -7,6 +7,7 @@
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
 #include "encoder/io/frame_times.h"
+#include "encoder/io/output_file.h"
 
 namespace dcurve {
 namespace {
@@ -126,7 +127,7 @@ bool read_point_cache(const std::string& path, Animation* anim, PointCacheInfo* 
   return true;
 }
 
-bool PointCacheWriter::write_header(uint32_t frame_count, double frame_rate) {
+bool PointCacheWriter::write_header(uint32_t frame_count, double frame_rate, std::string* error) {
   buffer_.clear();
   if (kind_ == PointCacheKind::Pc2) {
     buffer_.assign(kPc2Signature, kPc2Signature + 12);
@@ -140,14 +141,14 @@ bool PointCacheWriter::write_header(uint32_t frame_count, double frame_rate) {
     store_u32(&buffer_, vertex_count_, true);
     for (uint32_t f = 0; f < frame_count; ++f) store_f32(&buffer_, float(f / frame_rate), true);
   }
-  return std::fwrite(buffer_.data(), 1, buffer_.size(), out_) == buffer_.size();
+  return out_->write(buffer_.data(), buffer_.size(), error);
 }
 
-bool PointCacheWriter::write_frame(const float* xyz) {
+bool PointCacheWriter::write_frame(const float* xyz, std::string* error) {
   buffer_.clear();
   const bool big = kind_ == PointCacheKind::Mdd;
   for (size_t i = 0; i < size_t(vertex_count_) * 3; ++i) store_f32(&buffer_, xyz[i], big);
-  return std::fwrite(buffer_.data(), 1, buffer_.size(), out_) == buffer_.size();
+  return out_->write(buffer_.data(), buffer_.size(), error);
 }
 
 }  // namespace dcurve

@@ -3,12 +3,12 @@
 // Both hold positions only, so reading takes the faces from a separate rest mesh.
 #pragma once
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "encoder/io/frames.h"
 #include "encoder/io/read_limits.h"
+#include "encoder/io/output_file.h"
 
 namespace dcurve {
 
@@ -32,17 +32,17 @@ bool point_cache_kind(const std::string& path, PointCacheKind* kind);
 bool read_point_cache(const std::string& path, Animation* anim, PointCacheInfo* info, std::string* error,
                       uint64_t max_memory = default_max_memory());
 
-// Writes a cache one frame at a time to an open stream (the caller owns the file and where it
-// lands). The header needs the frame count up front.
+// Writes a cache one frame at a time into an open OutputFile (the caller commits it). The
+// header needs the frame count up front.
 class PointCacheWriter {
  public:
-  PointCacheWriter(PointCacheKind kind, std::FILE* out, uint32_t vertex_count) : kind_(kind), out_(out), vertex_count_(vertex_count) {}
-  bool write_header(uint32_t frame_count, double frame_rate);
-  bool write_frame(const float* xyz);
+  PointCacheWriter(PointCacheKind kind, OutputFile* out, uint32_t vertex_count) : kind_(kind), out_(out), vertex_count_(vertex_count) {}
+  bool write_header(uint32_t frame_count, double frame_rate, std::string* error);
+  bool write_frame(const float* xyz, std::string* error);
 
  private:
   PointCacheKind kind_;
-  std::FILE* out_;
+  OutputFile* out_;
   uint32_t vertex_count_;
   std::vector<uint8_t> buffer_;
 };

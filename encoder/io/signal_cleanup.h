@@ -1,6 +1,6 @@
 // What a SIGINT, SIGTERM or SIGHUP removes before the process dies of it: the temporary file
-// being written (encoder/io/files) and a staging folder of outputs not yet moved into place
-// (cli/staging_dir). The handler only makes async-signal-safe calls.
+// being written (encoder/io/output_file) and a staging folder of frames not yet moved into
+// place (encoder/io/output_folder). The handler only makes async-signal-safe calls.
 #pragma once
 #include <string>
 

@@ -13,6 +13,7 @@
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"
 #include "encoder/io/files.h"
+#include "encoder/io/output_file.h"
 
 namespace {
 std::atomic<size_t> live_bytes{0}, peak_bytes{0};
