@@ -54,7 +54,7 @@ TEST(CliHostileInput, SpecialFilesNeitherHangNorExhaustMemory) {
   json j = triangle_gltf();
   j["images"] = json::array({{{"uri", "image.png"}}, {{"uri", "."}}});
   std::ofstream(dir / "t.gltf") << j.dump();
-  const CommandResult images = run_limited("encode " + (dir / "t.gltf") + " -o " + (dir / "o.dcrv"));
+  const CommandResult images = run_limited("encode " + (dir / "t.gltf") + " -o " + (dir / "images.dcrv"));
   EXPECT_EQ(images.exit_code, 0) << images.output;  // images are never opened
 
   fs::create_symlink("/dev/zero", dir / "zero.pc2");

@@ -253,7 +253,7 @@ TEST(Cli, ProgressLinesWhenStderrIsAPipe) {
   TempDir dir;
   std::string err;
   ASSERT_TRUE(write_frame_folder(dir / "in", simulate_builtin("cantilever", 12), "obj", &err)) << err;
-  const std::string args = "encode " + dir / "in" + " -o " + dir / "c.dcrv --threads 1";
+  const std::string args = "encode " + dir / "in" + " -o " + dir / "c.dcrv --threads 1 --force";
   CommandResult r = run_cli(args, 0.02);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::regex line(R"(^dcurve encode: encode (\d+)%, \d+ s(, about \d+ s left)?$)");
