@@ -11,6 +11,7 @@
 #include <random>
 
 #include "codec/common/error.h"
+#include "encoder/io/files.h"
 #include "encoder/io/rename.h"
 #include "encoder/io/signal_cleanup.h"
 
@@ -34,15 +35,6 @@ std::string folder_of(const std::string& path) {
 size_t name_max_of(const std::string& path) {
   const long n = pathconf(folder_of(path).c_str(), _PC_NAME_MAX);
   return n > 16 ? size_t(n) : 255;
-}
-
-const char* kind_of(mode_t mode) {
-  return S_ISLNK(mode)                     ? "a symbolic link"
-         : S_ISDIR(mode)                   ? "a folder"
-         : S_ISFIFO(mode)                  ? "a FIFO"
-         : S_ISCHR(mode) || S_ISBLK(mode)  ? "a device"
-         : S_ISSOCK(mode)                  ? "a socket"
-                                           : "not a regular file";
 }
 
 // Creates a fresh temporary for `path` and registers it for the signal handler; -1 on failure.
@@ -74,7 +66,7 @@ bool check_output_path(const std::string& path, bool replace, std::string* error
     return fail(error, path + ": cannot check the output: " + std::strerror(errno));
   }
   if (!S_ISREG(st.st_mode))
-    return fail(error, path + ": the output exists and is " + kind_of(st.st_mode) + "; refusing to replace it");
+    return fail(error, path + ": the output exists and is " + file_type_name(st.st_mode) + "; refusing to replace it");
   if (!replace) return fail(error, path + ": the output exists; --force replaces it");
   return true;
 }
