@@ -23,8 +23,6 @@ CommandResult run_limited(const std::string& args, long virtual_kib = 0) {
   return run_cli_command(limit + "timeout 60 " + cli_program() + " " + args);
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
 // An error, not a crash, hang or abort: exit 1, the input named, no bare library message.
 void expect_clear_error(const CommandResult& r, const std::string& input, const std::string& expected) {
   EXPECT_EQ(r.exit_code, 1) << r.output;

@@ -214,14 +214,6 @@ TEST(CliIo, FolderFramesInNumberOrderAndGapsNamed) {
   EXPECT_FALSE(fs::exists(dir / "b.dcrv"));
 }
 
-// The names in a folder, sorted.
-std::vector<std::string> listing(const std::string& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 TEST(CliIo, FolderOutputIsNeverAStaleMix) {
   TempDir dir;
   fs::create_directory(dir / "anim");

@@ -46,15 +46,6 @@ std::string decode(const TempDir& dir, const std::string& output, const std::str
   return std::to_string(r.exit_code) + " " + r.output;
 }
 
-std::vector<std::string> listing(const std::string& folder) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(folder)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
 // Issue 48: decode -o out.glb replaced an existing file silently while decode -o frames/
 // refused. Now every output kind of every command: refused without --force (the file as it
 // was), replaced with it.

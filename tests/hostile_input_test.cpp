@@ -26,8 +26,6 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
 // Writes `j` as DIR/name and reads it; the message when refused ("" when read).
 std::string read_gltf(const std::string& path, const json& j, const ReadLimits& limits = ReadLimits()) {
   std::ofstream(path) << j.dump();

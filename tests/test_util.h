@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "decoder/dcurve.hpp"
 #include "encoder/io/frames.h"
@@ -134,6 +135,16 @@ inline std::vector<std::array<uint32_t, 3>> canonical_triangles(const std::vecto
 }
 
 // The whole content of a file ("" when it cannot be read).
+// The names in a folder, sorted.
+inline std::vector<std::string> listing(const std::string& folder) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(folder)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
 inline std::string file_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream s;

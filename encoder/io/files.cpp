@@ -20,6 +20,11 @@ std::string lowercase_extension(const std::string& path) {
   return e;
 }
 
+std::string containing_folder(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  return parent.empty() ? "." : parent.string();
+}
+
 const char* file_type_name(unsigned st_mode) {
   return S_ISREG(st_mode)                        ? "a regular file"
          : S_ISLNK(st_mode)                      ? "a symbolic link"

@@ -19,6 +19,9 @@ bool check_input_file(const std::string& path, std::string* error);
 // What a file of mode `st_mode` is, for messages: "a symbolic link", "a FIFO", "a folder", ...
 const char* file_type_name(unsigned st_mode);
 
+// The folder that holds `path` ("." for a bare file name): where an output's temporary goes.
+std::string containing_folder(const std::string& path);
+
 // The file name's extension with its dot, lower case (".obj" for "a/B.OBJ"; "" when none).
 std::string lowercase_extension(const std::string& path);
 

@@ -26,14 +26,9 @@ std::string random_suffix() {
   return s;
 }
 
-std::string folder_of(const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  return parent.empty() ? "." : parent.string();
-}
-
 // The longest file name the output's folder takes (255 on the usual file systems).
 size_t name_max_of(const std::string& path) {
-  const long n = pathconf(folder_of(path).c_str(), _PC_NAME_MAX);
+  const long n = pathconf(containing_folder(path).c_str(), _PC_NAME_MAX);
   return n > 16 ? size_t(n) : 255;
 }
 

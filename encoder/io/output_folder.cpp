@@ -27,11 +27,6 @@ std::string without_trailing_slashes(std::string dir) {
   return dir;
 }
 
-std::string folder_of(const std::string& path) {
-  const fs::path parent = fs::path(path).parent_path();
-  return parent.empty() ? "." : parent.string();
-}
-
 // Opens a folder (never through a link) and takes its lock without waiting; -1 if either fails.
 int open_locked(const std::string& dir) {
   const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
@@ -85,7 +80,7 @@ bool OutputFolder::check(const std::string& dir, bool replace, std::string* erro
 }
 
 bool OutputFolder::open(const std::string& dir, bool replace, std::string* error) {
-  return inspect(dir, replace, error) && create_staging(folder_of(dir_), error);
+  return inspect(dir, replace, error) && create_staging(containing_folder(dir_), error);
 }
 
 bool OutputFolder::inspect(const std::string& dir, bool replace, std::string* error) {
@@ -97,7 +92,7 @@ bool OutputFolder::inspect(const std::string& dir, bool replace, std::string* er
   if (exists_ && !S_ISDIR(st.st_mode))
     return fail(error, dir_ + (S_ISLNK(st.st_mode) ? ": the output folder is a symbolic link; give the folder itself"
                                                    : ": exists and is not a folder"));
-  const std::string parent = folder_of(dir_);
+  const std::string parent = containing_folder(dir_);
   std::error_code ec;
   if (!fs::is_directory(parent, ec)) return fail(error, dir_ + ": folder " + parent + " does not exist");
   return !exists_ || check_existing(replace, error);
@@ -163,7 +158,7 @@ bool OutputFolder::commit(std::string* error) {
                                    : ": cannot move the frames into place: " + std::string(std::strerror(errno))));
   staging_.clear();
   set_temporary_folder("");
-  sync_folder(folder_of(dir_));
+  sync_folder(containing_folder(dir_));
   return true;
 }
 
@@ -178,7 +173,7 @@ bool OutputFolder::swap_in(std::string* error) {
   }
   const std::string old = staging_;
   staging_.clear();
-  sync_folder(folder_of(dir_));
+  sync_folder(containing_folder(dir_));
   std::error_code ec;
   std::vector<fs::path> entries;  // listed first: the loop below changes the folder
   for (const auto& e : fs::directory_iterator(old, ec)) entries.push_back(e.path());
