@@ -81,7 +81,7 @@ Action add_encode(CLI::App& app) {
     InputOptions input_options;
     int threads = 0, effort = EncodeOptions().effort;
     std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto", chunk_frames = "auto";
-    std::string inbetween = "auto";
+    std::string inbetween = "auto", profile = "small";
     uint32_t curve_points = 64;
   };
   auto o = std::make_shared<Opts>();
@@ -141,6 +141,11 @@ Action add_encode(CLI::App& app) {
                  "faster, higher finds the last percent")
       ->check(CLI::Range(kMinEffort, kMaxEffort))
       ->capture_default_str();
+  app.add_option("--profile", o->profile,
+                 "fast: format 4, built for decode speed (one dense predictor per frame, sparse residuals); "
+                 "small: format 3's context-adaptive coder, smaller files that decode several times slower")
+      ->check(CLI::IsMember({"fast", "small"}))
+      ->capture_default_str();
   app.add_option("--chunk-frames", o->chunk_frames,
                  "Frames per independently decodable chunk: auto (chosen by the encoder by measured size) or "
                  "1..4096. A decoder decodes one chunk to reach any of its frames and holds two")
@@ -191,6 +196,7 @@ Action add_encode(CLI::App& app) {
     eo.segment_frames = o->segment_frames == "auto" ? 0 : uint32_t(std::stoul(o->segment_frames));
     eo.grid_refinement = o->grid == "auto" ? 0.0 : std::stod(o->grid);
     eo.effort = o->effort;
+    eo.profile = o->profile == "small" ? Profile::Small : Profile::Fast;
     eo.chunk_frames = o->chunk_frames == "auto" ? 0 : uint32_t(std::stoul(o->chunk_frames));
     eo.keep_all_motions = o->keep_all_motions;
     Inbetween forced;
@@ -230,6 +236,7 @@ Action add_encode(CLI::App& app) {
                         {"chunk_frames", rep.chunk_frames},
                         {"inbetween", inbetween_name(rep.inbetween)},
                         {"effort", o->effort},
+                        {"profile", o->profile},
                         {"low_rank_bytes", rep.low_rank_bytes},
                         {"curve_fallback", rep.curve_fallback}};
     j.update(curve_report_json(rep.curves));

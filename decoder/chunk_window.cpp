@@ -28,7 +28,10 @@ ChunkWindow::ChunkWindow(const SharedState& shared) : shared_(shared), rule_(sha
 size_t ChunkWindow::memory_bytes() const {
   size_t stencil = 0;
   for (const StencilSlot& slot : stencil_) stencil += slot.correction.capacity();
-  return sizeof(*this) + workspace_.bytes() + read_buffer_.capacity() +
+  size_t fast = fast_.memory_bytes();
+  for (const FrameSlot& s : ring_) fast += s.values.capacity() * sizeof(int32_t);
+  for (const FrameSlot& s : model_) fast += s.values.capacity() * sizeof(int32_t);
+  return sizeof(*this) + fast + workspace_.bytes() + read_buffer_.capacity() +
          (values_.capacity() + kept_.capacity()) * sizeof(int32_t) +
          (scratch_.capacity() + stencil) * sizeof(float) + prediction_scratch_.bytes();
 }
@@ -62,10 +65,85 @@ bool ChunkWindow::decode_chunk(uint32_t c, Error* error) {
 }
 
 const int32_t* ChunkWindow::frame_values(uint32_t f, Error* error) {
+  if (shared_.fast()) return fast_frame_values(f, error);
   const uint32_t K = shared_.index.chunk_frames, c = f / K;
   if (f == kept_frame_ && c != chunk_) return kept_.data();
   if (c != chunk_ && !decode_chunk(c, error)) return nullptr;
   return values_.data() + size_t(f - c * K) * shared_.model.meta.vertex_count * 3;
+}
+
+bool ChunkWindow::open_fast_chunk(uint32_t c, Error* error) {
+  const ChunkEntry& e = shared_.index.chunks[c];
+  fast_chunk_ = UINT32_MAX;  // until the open succeeds
+  const uint8_t* bytes = shared_.chunks->fetch(e.offset, e.size, &read_buffer_, error);
+  if (!bytes) return false;
+  std::string why;
+  if (kVerifyChecksums && crc32c(bytes, size_t(e.size)) != e.crc) why = "is corrupted (checksum mismatch)";
+  const Model& m = shared_.model;
+  const ChunkSpan span = chunk_span(m.meta.frame_count, shared_.index.chunk_frames, c);
+  if (why.empty() && !fast_.open(bytes, size_t(e.size), m.meta.vertex_count, span.count, shared_.predictor.active(), &why))
+    why = ": " + why;
+  if (!why.empty()) {
+    if (error) *error = {Status::CorruptChunk, "chunk " + std::to_string(c) + " " + why};
+    return false;
+  }
+  fast_chunk_ = c;
+  return true;
+}
+
+// The Model prediction of frame f, kept for the next frame's ModelDelta.
+const int32_t* ChunkWindow::model_values(uint32_t f) {
+  for (FrameSlot& s : model_)
+    if (s.frame == f) return s.values.data();
+  FrameSlot& s = model_[0].frame + 1 == f ? model_[1] : model_[0];
+  s.values.resize(size_t(shared_.model.meta.vertex_count) * 3);
+  shared_.predictor.frame(f, s.values.data(), &prediction_scratch_);
+  s.frame = f;
+  return s.values.data();
+}
+
+// Decodes the next frame of the open chunk into the ring slot of the oldest frame it does not read.
+bool ChunkWindow::decode_fast_frame(Error* error) {
+  const uint32_t k = fast_.next(), f = fast_chunk_ * shared_.index.chunk_frames + k;
+  const int32_t* q[3] = {nullptr, nullptr, nullptr};  // frames f - 1, f - 2
+  FrameSlot* target = nullptr;
+  for (FrameSlot& s : ring_) {
+    const uint32_t back = s.frame < f ? f - s.frame : 0;  // 1, 2: kept, also across a chunk boundary
+    if (back == 1 || back == 2) {
+      if (k >= back) q[back] = s.values.data();
+    } else if (!target || s.frame == UINT32_MAX || (target->frame != UINT32_MAX && s.frame < target->frame)) {
+      target = &s;
+    }
+  }
+  const fast_residual::FrameKind kind = fast_.kind(k);
+  const bool model = fast_residual::uses_model(kind);
+  const int32_t* M1 = model && k >= 1 ? model_values(f - 1) : nullptr;
+  const int32_t* M = model ? model_values(f) : nullptr;
+  target->frame = UINT32_MAX;
+  target->values.resize(size_t(shared_.model.meta.vertex_count) * 3);
+  std::string why;
+  if (!fast_.decode_frame(q[1], q[2], M, M1, target->values.data(), &why)) {
+    fast_chunk_ = UINT32_MAX;
+    if (error) *error = {Status::CorruptChunk, "chunk " + std::to_string(f / shared_.index.chunk_frames) + ": " + why};
+    return false;
+  }
+  target->frame = f;
+  return true;
+}
+
+// Frame f from the ring, else decoded: onwards from the open chunk's next frame when f lies
+// ahead of it, else from the start of f's chunk. A decode keeps the two frames before it, so
+// the frame evaluate holds (f - 1 when it asks for f) stays valid.
+const int32_t* ChunkWindow::fast_frame_values(uint32_t f, Error* error) {
+  for (const FrameSlot& s : ring_)
+    if (s.frame == f) return s.values.data();
+  const uint32_t K = shared_.index.chunk_frames, c = f / K, local = f - c * K;
+  if ((c != fast_chunk_ || fast_.next() > local) && !open_fast_chunk(c, error)) return nullptr;
+  while (fast_.next() <= local)
+    if (!decode_fast_frame(error)) return nullptr;
+  for (const FrameSlot& s : ring_)
+    if (s.frame == f) return s.values.data();
+  return nullptr;  // unreachable: the last frame decoded is f
 }
 
 const float* ChunkWindow::stencil_correction(const FrameEvaluator::Place& place, uint32_t f, uint32_t lo,
@@ -123,7 +201,7 @@ bool ChunkWindow::evaluate(double x, float* out, Error* error) {
   const int32_t* next = nullptr;
   if (place.w != 0.f) {
     const uint32_t K = shared_.index.chunk_frames;
-    if ((place.i + 1) % K == 0 && frame != kept_.data()) {
+    if (!shared_.fast() && (place.i + 1) % K == 0 && frame != kept_.data()) {
       // Across a chunk boundary: frame i is kept while the next chunk replaces its own.
       kept_.assign(frame, frame + n);
       kept_frame_ = place.i;

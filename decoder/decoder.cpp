@@ -49,9 +49,11 @@ bool prepare(SharedState* shared, uint64_t file_bytes, std::string* error) {
     // A cursor holds a decoded chunk: bounded like every other table by the file size.
     if (uint64_t(shared->index.chunk_frames) * m.meta.vertex_count * 3 * 2 > budget)
       return fail(error, "chunks are implausibly large for the file size");
-    shared->traversal = build_traversal(m);
+    // A fast payload (format 4) reads no neighbours; the low-rank basis builds its own.
+    if (!shared->fast()) shared->traversal = build_traversal(m);
   }
-  return shared->predictor.build(m, budget, error, m.residual.step > 0 ? &shared->traversal : nullptr);
+  const bool has_traversal = m.residual.step > 0 && !shared->fast();
+  return shared->predictor.build(m, budget, error, has_traversal ? &shared->traversal : nullptr);
 }
 
 }  // namespace

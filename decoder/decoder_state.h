@@ -12,6 +12,7 @@
 #include "codec/common/model.h"
 #include "codec/common/predictors.h"
 #include "codec/common/residual.h"
+#include "codec/decompress/fast_residual_decoder.h"
 #include "codec/decompress/model_prediction.h"
 #include "dcurve.hpp"
 
@@ -26,6 +27,7 @@ struct SharedState {
   std::unique_ptr<ChunkSource> chunks;
 
   bool has_residual() const { return !index.chunks.empty(); }
+  bool fast() const { return index.version == fast_residual::kPayloadVersion; }
   size_t memory_bytes() const;
 };
 
@@ -48,6 +50,11 @@ class ChunkWindow {
   // f is in the chunk held.
   const int32_t* frame_values(uint32_t f, Error* error);
   bool decode_chunk(uint32_t c, Error* error);
+  // Fast payloads (format 4): frames decoded one at a time into a ring of the last three.
+  const int32_t* fast_frame_values(uint32_t f, Error* error);
+  bool open_fast_chunk(uint32_t c, Error* error);
+  bool decode_fast_frame(Error* error);
+  const int32_t* model_values(uint32_t f);
   // Frame f's correction in the segment of `place`, kept in a stencil slot: the frames of one
   // cubic in-between stay valid together, and the in-betweens around f reuse it. Reuses a
   // slot whose frame is outside [lo, hi] or whose segment is another.
@@ -68,6 +75,14 @@ class ChunkWindow {
   };
   StencilSlot stencil_[kInbetweenStencil];
   ResidualWorkspace workspace_;
+  struct FrameSlot {
+    uint32_t frame = UINT32_MAX;
+    std::vector<int32_t> values;
+  };
+  FastChunkDecoder fast_;
+  uint32_t fast_chunk_ = UINT32_MAX;  // the chunk fast_ decodes
+  FrameSlot ring_[3];                 // the last three frames decoded
+  FrameSlot model_[2];                // Model predictions of the last two frames asked for
   std::vector<uint8_t> read_buffer_;
   std::vector<float> scratch_;
   PredictionScratch prediction_scratch_;

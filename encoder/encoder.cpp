@@ -19,6 +19,8 @@
 #include "encoder/curves/report.h"
 #include "encoder/face_order.h"
 #include "encoder/rate/block_flags.h"
+#include "encoder/rate/fast_low_rank.h"
+#include "encoder/rate/fast_plan.h"
 #include "encoder/rate/inbetween_choice.h"
 #include "encoder/rate/chunk_choice.h"
 #include "encoder/rate/encode_context.h"
@@ -114,7 +116,8 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   if (m->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
   if (residual_only) *residual_only = *m;
   LowRankChoiceOptions lro;
-  lro.components = opt.low_rank;
+  // The fast profile chooses its own low-rank model (fast_low_rank.h) on the grid found here.
+  lro.components = opt.profile == Profile::Fast && opt.low_rank == -1 ? 0 : opt.low_rank;
   lro.first_frame_anchor = opt.low_rank_first_frame;
   lro.posed_anchors = opt.low_rank_poses;
   LowRankChoiceReport rep;
@@ -309,7 +312,18 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     progress(0.9);
   }
   // The search measured without block flags; the chosen layer gets them where smaller.
-  if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error)) return false;
+  if (opt.profile == Profile::Fast) {
+    FastLayerOptions fo;
+    fo.snap_distance = start.snap;
+    fo.chunk_frames = opt.chunk_frames;
+    fo.threads = opt.threads;
+    const bool choose_model = opt.low_rank == -1 && !has_motion_model(m);
+    if (choose_model ? !choose_fast_low_rank(&m, anim.frames, start.rounded, fo, error)
+                     : !encode_fast_layer(&m, anim.frames, fo, error))
+      return false;
+  } else if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error)) {
+    return false;
+  }
   if (!choose_inbetween(&m, anim.frames, opt.inbetween, error)) return false;
   *out = write_container(m, wo);
 

@@ -30,6 +30,8 @@ constexpr uint32_t kMaxChunkFrames = 4096;
 constexpr double kMinTolerance = 1e-6;
 double minimum_tolerance(const Animation& anim);
 
+enum class Profile { Fast, Small };
+
 // EncodeOptions::effort's range and default.
 constexpr int kMinEffort = 1, kDefaultEffort = 2, kMaxEffort = 3;
 
@@ -65,6 +67,11 @@ struct EncodeOptions {
   // and 8x) side by side, the smaller file wins. 1: one grid 6x finer than the coarsest.
   // The low-rank choice runs in full at every level (encoder/rate/README.md).
   int effort = kDefaultEffort;
+  // Which residual coder writes the file. Small (the default): format 3's context-adaptive
+  // range coder with per-vertex spatial predictors. Fast: format 4's, built for decode speed
+  // (one dense predictor per frame, zstd-coded sparse residuals, short chunks, a low-rank
+  // model chosen for it); larger files (encoder/rate/fast_plan.h, format_spec/residual.md).
+  Profile profile = Profile::Small;
   // With a PDE model: keep every fitted motion even where it does not pay for its
   // coefficients (in-betweens then follow the model everywhere; the file may be larger).
   // Off: only paying motions are kept, and the file is the one without a PDE model when

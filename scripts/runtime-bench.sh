@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The runtime benchmark of the streaming decoder (decoder/README.md): encodes horse-gallop
-# (corpus-ext) and a 600-frame rope-small clip at 1e-3, then runs build/bench/runtime_bench
-# on both in one run: open, open + middle frame, open + every frame, memory, beside libdraco
-# decoding the same frames and a memcpy of them. Files go to out/runtime/ and are reused.
+# (corpus-ext) and a 600-frame rope-small clip at 1e-3 with each profile (small: format 3,
+# fast: format 4), then runs build/bench/runtime_bench on the four files in one run: open,
+# open + middle frame, open + every frame, memory, beside libdraco decoding the same frames
+# and a memcpy of them. Files go to out/runtime/ and are reused.
 #   scripts/runtime-bench.sh [CORPUS_EXT=../shared/corpus-ext]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,15 +14,17 @@ cmake --build build -j"$jobs" --target dcurve runtime_bench
 dcurve=build/cli/dcurve
 dir=out/runtime
 mkdir -p "$dir"
-if [ ! -f "$dir/rope-small-600.dcrv" ]; then
-  [ -d "$dir/rope-small-600" ] || "$dcurve" simulate --scene rope-small --frames 600 -o "$dir/rope-small-600"
-  "$dcurve" encode "$dir/rope-small-600" -o "$dir/rope-small-600.dcrv" --tolerance 1e-3 --force
-fi
-files=("$dir/rope-small-600.dcrv")
-if [ -d "$corpus/horse-gallop" ]; then
-  [ -f "$dir/horse-gallop.dcrv" ] || "$dcurve" encode "$corpus/horse-gallop" -o "$dir/horse-gallop.dcrv" --tolerance 1e-3
-  files=("$dir/horse-gallop.dcrv" "${files[@]}")
-else
-  echo "runtime-bench: $corpus/horse-gallop not found; the rope clip alone" >&2
-fi
+[ -d "$dir/rope-small-600" ] || "$dcurve" simulate --scene rope-small --frames 600 -o "$dir/rope-small-600"
+# Each clip twice: the default profile (format 3) and --profile fast (format 4).
+files=()
+encode() {  # encode SOURCE NAME PROFILE
+  local target="$dir/$2-$3.dcrv"
+  [ -f "$target" ] || "$dcurve" encode "$1" -o "$target" --tolerance 1e-3 --profile "$3" --force -q
+  files+=("$target")
+}
+for profile in small fast; do
+  [ -d "$corpus/horse-gallop" ] && encode "$corpus/horse-gallop" horse-gallop "$profile"
+  encode "$dir/rope-small-600" rope-small-600 "$profile"
+done
+[ -d "$corpus/horse-gallop" ] || echo "runtime-bench: $corpus/horse-gallop not found; the rope clip alone" >&2
 build/bench/runtime_bench "${files[@]}"

@@ -10,10 +10,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "codec/common/fast_residual.h"
 #include "codec/common/low_rank.h"
 #include "codec/common/residual.h"
 #include "codec/compress/container_writer.h"
 #include "codec/compress/faces_encoder.h"
+#include "codec/compress/fast_residual_encoder.h"
 #include "codec/compress/residual_encoder.h"
 #include "codec/decompress/model_prediction.h"
 #include "decoder/dcurve.hpp"
@@ -151,6 +153,19 @@ std::vector<Vector> recipes() {
     std::string err;
     EXPECT_TRUE(use_block_flags(&vector.model, BlockFlagUse::Always, &err)) << vector.name << ": " << err;
   }
+  // Format 4: fast payloads (residual.md section 10) in chunks of 4, every frame kind; the
+  // second on the chunked recipe, whose PDE segments give kinds 3 and 4 their Model prediction.
+  Model fast_frames = small_model(7);
+  fast_frames.residual.payload =
+      encode_fast_residuals(fast_frames, testing::grid(6, 7), {0, 1, 2, 2, 0, 1, 2}, 4, nullptr);
+  v.push_back({"fast_frames", fast_frames, {}});
+  Model fast_model = chunked;
+  std::vector<int32_t> prediction;
+  std::string err;
+  EXPECT_TRUE(model_grid_prediction(fast_model, UINT64_MAX, &prediction, &err)) << err;
+  fast_model.residual.payload =
+      encode_fast_residuals(fast_model, testing::grid(6, 10), {3, 4, 4, 1, 3, 4, 2, 4, 3, 0}, 4, &prediction);
+  v.push_back({"fast_model_chunked", fast_model, {}});
   return v;
 }
 
@@ -272,6 +287,8 @@ TEST(TestVectors, DecoderReproducesTheExpectedPositions) {
 void expect_older_files_decode(const std::string& version, uint16_t minor) {
   for (const Vector& v : recipes()) {
     if (v.model.meta.inbetween != Inbetween::Linear) continue;  // recipes of format 3.2
+    const std::vector<uint8_t>& payload = v.model.residual.payload;
+    if (!payload.empty() && payload[0] == fast_residual::kPayloadVersion) continue;  // format 4
     const std::string path = dir() + version + "/" + v.name + ".dcrv";
     const std::vector<uint8_t> bytes = read_bytes(path);
     ASSERT_GE(bytes.size(), 8u) << "missing test vector " << path;

@@ -14,6 +14,11 @@ namespace dcurve {
 // adds optional sections, hint flags, or required feature flags an older reader refuses.
 constexpr uint16_t kFormatVersionMajor = 3;
 constexpr uint16_t kFormatVersionMinor = 2;
+// Format 4.0: 3.2 whose residual layer (RESI) is a fast payload (residual payload version
+// 5, codec/common/fast_residual.h). The writer writes it exactly for such files, so files
+// of the small profile stay 3.2; a reader reads both majors.
+constexpr uint16_t kFastFormatVersionMajor = 4;
+constexpr uint16_t kFastFormatVersionMinor = 0;
 // Required feature (file_flags bit 0, since 3.1): residual payloads may be of version 4 (zero
 // block flags), which a 3.0 reader cannot decode. The writer always sets it.
 constexpr uint32_t kFileFlagZeroBlocks = 1u;

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "codec/common/bytes.h"
+#include "codec/common/fast_residual.h"
 #include "codec/common/crc32.h"
 #include "codec/common/residual.h"
 #include "codec/compress/faces_encoder.h"
@@ -164,8 +165,9 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   for (const auto& [tag, raw] : sections) put_section(body, tag, tag != kFaces, raw, options.zstd_level);
   ByteWriter out;
   out.bytes(kMagic, 4);
-  out.u16(kFormatVersionMajor);
-  out.u16(kFormatVersionMinor);
+  const bool fast = !model.residual.payload.empty() && model.residual.payload[0] == fast_residual::kPayloadVersion;
+  out.u16(fast ? kFastFormatVersionMajor : kFormatVersionMajor);
+  out.u16(fast ? kFastFormatVersionMinor : kFormatVersionMinor);
   out.u32(kFileFlagZeroBlocks | (model.meta.inbetween != Inbetween::Linear ? kFileFlagInbetween : 0));
   out.u32(uint32_t(sections.size()));
   out.u64(kHeaderBytes + body.size());

@@ -100,29 +100,34 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
     return {};
   Traversal owned;
   const Traversal& trav = traversal_for(model, options, &owned);
-  ByteWriter data;
-  std::vector<ChunkEntry> entries;
+  std::vector<std::vector<uint8_t>> chunks;
   for (uint32_t c = 0; c < plan.chunks.size(); ++c) {
     const ChunkSpan span = chunk_span(F, K, c);
     std::vector<int32_t> prediction;
     const ResidualOptions chunk_options = options_for_chunk(options, span, stride, &prediction);
-    const std::vector<uint8_t> bytes =
-        encode_residual_chunk(V, trav, q.data() + stride * span.first, span.count, plan.chunks[c], chunk_options);
-    if (bytes.empty()) return {};
-    entries.push_back({data.size(), bytes.size(), crc32c(bytes.data(), bytes.size())});
-    data.bytes(bytes.data(), bytes.size());
+    chunks.push_back(
+        encode_residual_chunk(V, trav, q.data() + stride * span.first, span.count, plan.chunks[c], chunk_options));
+    if (chunks.back().empty()) return {};
   }
+  return assemble_residual_payload(options.zero_block_flags ? kFormatVersion : kOldestFormatVersion, trav.from_faces,
+                                   K, chunks);
+}
+
+std::vector<uint8_t> assemble_residual_payload(uint8_t version, bool from_faces, uint32_t chunk_frames,
+                                               const std::vector<std::vector<uint8_t>>& chunks) {
   ByteWriter w;
-  w.u8(options.zero_block_flags ? kFormatVersion : kOldestFormatVersion);
-  w.u8(trav.from_faces ? 1 : 0);
-  w.varint(K);
-  w.varint(entries.size());
-  for (const ChunkEntry& e : entries) {
-    w.varint(e.offset);
-    w.varint(e.size);
-    w.u32(e.crc);
+  w.u8(version);
+  w.u8(from_faces ? 1 : 0);
+  w.varint(chunk_frames);
+  w.varint(chunks.size());
+  uint64_t offset = 0;
+  for (const std::vector<uint8_t>& bytes : chunks) {
+    w.varint(offset);
+    w.varint(bytes.size());
+    w.u32(crc32c(bytes.data(), bytes.size()));
+    offset += bytes.size();
   }
-  w.bytes(data.data().data(), data.size());
+  for (const std::vector<uint8_t>& bytes : chunks) w.bytes(bytes.data(), bytes.size());
   return std::move(w.data());
 }
 

@@ -27,4 +27,8 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
 std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q,
                                       const PredictorPlan* plan = nullptr, const ResidualOptions& options = {});
 
+// A payload of the given version from its chunks' bytes: header, chunk index, chunk data.
+std::vector<uint8_t> assemble_residual_payload(uint8_t version, bool from_faces, uint32_t chunk_frames,
+                                               const std::vector<std::vector<uint8_t>>& chunks);
+
 }  // namespace dcurve

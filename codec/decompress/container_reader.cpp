@@ -8,6 +8,7 @@
 
 #include "codec/common/basis.h"
 #include "codec/common/bytes.h"
+#include "codec/common/fast_residual.h"
 #include "codec/common/crc32.h"
 #include "codec/common/error.h"
 #include "codec/common/residual.h"
@@ -132,13 +133,16 @@ bool parse_residual(ByteReader& r, Model* m) {
 
 // The RESI payload read from a head holds exactly the chunk index, which must describe
 // the chunk data_bytes that follow the head.
-bool check_chunk_index(Model* m, uint64_t data_bytes, std::string* error) {
+bool check_chunk_index(Model* m, uint64_t data_bytes, uint16_t major, std::string* error) {
   ResidualIndex index;
   std::string why;
   const std::vector<uint8_t>& p = m->residual.payload;
   if (!read_residual_index(p.data(), p.size(), m->meta.frame_count, !m->faces.empty(), data_bytes, &index, &why))
     return fail(error, "section RESI: " + why);
   if (index.index_bytes != p.size()) return fail(error, "section RESI has bytes after its chunk index");
+  if ((index.version == fast_residual::kPayloadVersion) != (major == kFastFormatVersionMajor))
+    return fail(error, "section RESI's payload version " + std::to_string(index.version) + " is not that of format " +
+                           std::to_string(major));
   if (index.data_bytes != data_bytes)
     return fail(error, "chunk data (" + std::to_string(data_bytes) + " bytes) disagrees with the chunk index (" +
                            std::to_string(index.data_bytes) + " bytes)");
@@ -185,9 +189,10 @@ bool read_container_header(const uint8_t* data, size_t size, uint64_t file_bytes
   const uint32_t crc = r.u32();
   if (!r.ok) return fail(error, "truncated header (" + std::to_string(size) + " bytes)");
   if (crc != crc32c(data, kHeaderBytes - 4) && kVerifyChecksums) return fail(error, "header checksum mismatch");
-  if (h->version_major != kFormatVersionMajor)
+  if (h->version_major != kFormatVersionMajor && h->version_major != kFastFormatVersionMajor)
     return fail(error, "unsupported format version " + std::to_string(h->version_major) + " (this decoder reads " +
-                           std::to_string(kFormatVersionMajor) + ".x)");
+                           std::to_string(kFormatVersionMajor) + ".x and " + std::to_string(kFastFormatVersionMajor) +
+                           ".x)");
   if (h->flags & kFileRequiredFlagsMask & ~kFileKnownRequiredFlags)
     return fail(error, "file requires features this decoder does not know");
   if (h->head_bytes < kHeaderBytes || h->head_bytes > file_bytes)
@@ -283,7 +288,7 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
     model->curves = singleton_curves(model->meta.vertex_count);
   if (!seen[3]) model->segments.clear();
   if (seen[5]) {
-    if (!check_chunk_index(model, file_bytes - h.head_bytes, error)) return false;
+    if (!check_chunk_index(model, file_bytes - h.head_bytes, h.version_major, error)) return false;
   } else if (file_bytes != h.head_bytes) {
     return fail(error, "trailing bytes after the last section");
   }

@@ -3,8 +3,10 @@
 #include "codec/common/bytes.h"
 #include "codec/common/crc32.h"
 #include "codec/common/error.h"
+#include "codec/common/fast_residual.h"
 #include "codec/common/int_coder.h"
 #include "codec/common/residual_walk.h"
+#include "codec/decompress/fast_residual_decoder.h"
 #include "codec/decompress/range_decoder.h"
 #include "codec/decompress/record_reader.h"
 
@@ -131,7 +133,8 @@ bool read_residual_index(const uint8_t* payload, size_t size, uint32_t F, bool h
   const uint8_t from_faces = r.u8();
   const uint64_t chunk_frames = r.varint(), count = r.varint();
   if (!r.ok) return fail(error, "residual payload is truncated");
-  if (version < kOldestFormatVersion || version > kFormatVersion) return fail(error, "residual payload version " + std::to_string(version) + " is not supported");
+  if ((version < kOldestFormatVersion || version > kFormatVersion) && version != fast_residual::kPayloadVersion)
+    return fail(error, "residual payload version " + std::to_string(version) + " is not supported");
   if (from_faces > 1 || from_faces != (has_faces ? 1 : 0))
     return fail(error, "residual payload was coded with a different neighbour structure (faces present or not)");
   if (chunk_frames == 0 || chunk_frames > F) return fail(error, "residual chunk length is out of range");
@@ -195,9 +198,15 @@ bool decode_all(const Model& model, std::vector<int32_t>* q, ResidualPlan* plan,
     ResidualOptions chunk_options = options_for_chunk(options, span, stride, &prediction);
     chunk_options.zero_block_flags = has_zero_block_flags(index.version);
     std::string why;
-    if (!decode_residual_chunk(V, trav, bytes, size_t(e.size), span.count, q->data() + stride * span.first,
-                               chunk_options, &ws, &why))
-      return fail(error, "residual chunk " + std::to_string(c) + ": " + why);
+    int32_t* values = q->data() + stride * span.first;
+    const bool ok = index.version == fast_residual::kPayloadVersion
+                        ? decode_fast_chunk(V, bytes, size_t(e.size), span.count,
+                                            chunk_options.model_prediction ? chunk_options.model_prediction->data()
+                                                                           : nullptr,
+                                            values, &why)
+                        : decode_residual_chunk(V, trav, bytes, size_t(e.size), span.count, values, chunk_options,
+                                                &ws, &why);
+    if (!ok) return fail(error, "residual chunk " + std::to_string(c) + ": " + why);
     plan->chunks[c] = ws.plan;
   }
   return true;
@@ -216,6 +225,7 @@ bool decode_predictor_plan(const Model& model, ResidualPlan* plan, std::string* 
   if (!read_inline_index(model, &index, error)) return false;
   plan->chunk_frames = index.chunk_frames;
   plan->chunks.assign(index.chunks.size(), PredictorPlan());
+  if (index.version == fast_residual::kPayloadVersion) return true;  // no predictor tables
   for (uint32_t c = 0; c < index.chunks.size(); ++c) {
     const ChunkEntry& e = index.chunks[c];
     if (e.size < 4) return fail(error, "residual chunk is truncated");

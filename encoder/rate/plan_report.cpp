@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "codec/common/fast_residual.h"
 #include "codec/common/residual.h"
 #include "codec/decompress/model_prediction.h"
 #include "codec/decompress/residual_decoder.h"
@@ -24,7 +25,9 @@ std::string counts_text(const nlohmann::json& counts) {
 }  // namespace
 
 nlohmann::json predictor_use(const Model& m) {
-  if (!(m.residual.step > 0)) return nullptr;
+  // A fast payload (format 4) has one kind per frame and none of the choices reported here.
+  if (!(m.residual.step > 0) || (!m.residual.payload.empty() && m.residual.payload[0] == fast_residual::kPayloadVersion))
+    return nullptr;
   std::vector<int32_t> prediction;
   ResidualOptions options;
   std::string err;

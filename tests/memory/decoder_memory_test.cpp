@@ -89,8 +89,9 @@ struct Playback {
   size_t raw_bytes = 0;
 };
 
-Playback play(uint32_t frames, const std::string& path) {
+Playback play(uint32_t frames, const std::string& path, Profile profile = Profile::Small) {
   EncodeOptions o;
+  o.profile = profile;
   o.grid_refinement = 2;
   o.low_rank = 0;
   o.chunk_frames = kChunkFrames;
@@ -125,15 +126,11 @@ Playback play(uint32_t frames, const std::string& path) {
   return p;
 }
 
-TEST(DecoderMemory, PlaybackStaysWithinABoundThatDoesNotGrowWithTheFrameCount) {
-  const Playback short_clip = play(300, "/tmp/dcurve_memory_300.dcrv");
-  const Playback long_clip = play(600, "/tmp/dcurve_memory_600.dcrv");
-  const size_t V = kSide * kSide;
-  // The bound dcurve.hpp states for a file read from disk: two decoded chunks of int32
-  // values and the decoding buffers (residual bytes, one frame of predictions, read buffer),
-  // 40 bytes per vertex and chunk frame, plus the shared tables and bookkeeping, 256 bytes
-  // per vertex and 64 KiB.
-  const size_t bound = 40 * V * kChunkFrames + 256 * V + 65536;
+// Plays 300 and 600 frames of `profile` and checks both against `bound` (bytes) and each other.
+void expect_bounded_playback(Profile profile, size_t bound, const char* label) {
+  const std::string stem = std::string("/tmp/dcurve_memory_") + label;
+  const Playback short_clip = play(300, stem + "_300.dcrv", profile);
+  const Playback long_clip = play(600, stem + "_600.dcrv", profile);
   for (const Playback* p : {&short_clip, &long_clip}) {
     EXPECT_LE(p->memory_bytes, bound);
     EXPECT_LE(p->peak_bytes, bound);
@@ -149,11 +146,26 @@ TEST(DecoderMemory, PlaybackStaysWithinABoundThatDoesNotGrowWithTheFrameCount) {
   EXPECT_LE(long_clip.memory_bytes, short_clip.memory_bytes + 2048);
   EXPECT_LE(long_clip.peak_bytes, short_clip.peak_bytes + short_clip.peak_bytes / 8);
   EXPECT_LT(double(long_clip.memory_bytes), 0.15 * double(long_clip.raw_bytes));
-  std::printf("memory after playback: 300 frames %zu bytes (live %zu, peak %zu), 600 frames %zu bytes (live %zu, "
+  std::printf("%s, memory after playback: 300 frames %zu bytes (live %zu, peak %zu), 600 frames %zu bytes (live %zu, "
               "peak %zu, %.3f of raw)\n",
-              short_clip.memory_bytes, short_clip.live_bytes, short_clip.peak_bytes, long_clip.memory_bytes,
-              long_clip.live_bytes, long_clip.peak_bytes,
-              double(long_clip.memory_bytes) / double(long_clip.raw_bytes));
+              label, short_clip.memory_bytes, short_clip.live_bytes, short_clip.peak_bytes, long_clip.memory_bytes,
+              long_clip.live_bytes, long_clip.peak_bytes, double(long_clip.memory_bytes) / double(long_clip.raw_bytes));
+}
+
+// The bound dcurve.hpp states for a file read from disk: two decoded chunks of int32 values
+// and the decoding buffers (residual bytes, one frame of predictions, read buffer), 40 bytes
+// per vertex and chunk frame, plus the shared tables and bookkeeping, 256 bytes per vertex
+// and 64 KiB.
+TEST(DecoderMemory, PlaybackStaysWithinABoundThatDoesNotGrowWithTheFrameCount) {
+  const size_t V = kSide * kSide;
+  expect_bounded_playback(Profile::Small, 40 * V * kChunkFrames + 256 * V + 65536, "small");
+}
+
+// Format 4 (the fast profile): the cursor holds three decoded frames and two frames of Model
+// prediction (60 bytes per vertex), never a chunk, so the bound has no chunk term.
+TEST(DecoderMemory, FastPlaybackHoldsFramesNotChunksAndDoesNotGrow) {
+  const size_t V = kSide * kSide;
+  expect_bounded_playback(Profile::Fast, 60 * V + 256 * V + 65536, "fast");
 }
 
 }  // namespace

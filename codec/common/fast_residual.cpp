@@ -1,0 +1,34 @@
+#include "codec/common/fast_residual.h"
+
+#include <algorithm>
+
+namespace dcurve {
+namespace fast_residual {
+namespace {
+int32_t to_int32(int64_t v) { return int32_t(std::clamp<int64_t>(v, INT32_MIN, INT32_MAX)); }
+}  // namespace
+
+// One loop per kind, each a plain pass the compiler vectorises.
+void predict_frame(FrameKind kind, const int32_t* q1, const int32_t* q2, const int32_t* M, const int32_t* M1,
+                   size_t n, int32_t* out) {
+  switch (kind) {
+    case FrameKind::Previous:
+      std::copy(q1, q1 + n, out);
+      return;
+    case FrameKind::Linear:
+      for (size_t i = 0; i < n; ++i) out[i] = to_int32(2 * int64_t(q1[i]) - q2[i]);
+      return;
+    case FrameKind::Model:
+      std::copy(M, M + n, out);
+      return;
+    case FrameKind::ModelDelta:
+      for (size_t i = 0; i < n; ++i) out[i] = to_int32(int64_t(M[i]) + q1[i] - M1[i]);
+      return;
+    case FrameKind::Spatial:
+      std::fill(out, out + n, 0);  // the decoder adds its residuals and sums along vertex ids
+      return;
+  }
+}
+
+}  // namespace fast_residual
+}  // namespace dcurve

@@ -1,0 +1,64 @@
+// The fast residual payload (format 4: residual payload version 5, format_spec/residual.md
+// section 10): what its encoder (codec/compress/fast_residual_encoder.h) and decoder
+// (codec/decompress/fast_residual_decoder.h) must agree on. Built for decode speed: each
+// frame has one predictor whose values are a dense loop over the frame (nothing solved per
+// frame), and only the non-zero residuals are coded, in vertex-id order, as byte tokens
+// through zstd, whose tables are static per stream.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+namespace dcurve {
+namespace fast_residual {
+
+constexpr uint8_t kPayloadVersion = 5;
+
+// A frame's predictor. q1, q2: the chunk's frames one and two before; M, M1: the Model
+// prediction of this frame and of the one before.
+enum class FrameKind : uint8_t {
+  Spatial = 0,     // the same axis of the previous vertex id (0 for vertex 0): no other frame
+  Previous = 1,    // q1
+  Linear = 2,      // 2 q1 - q2
+  Model = 3,       // M
+  ModelDelta = 4,  // M + q1 - M1: the model plus the previous frame's correction
+};
+constexpr uint8_t kFrameKindCount = 5;
+
+// Frames of the chunk decoded before local frame k that `kind` reads.
+inline uint32_t frames_needed(FrameKind kind) {
+  switch (kind) {
+    case FrameKind::Previous:
+    case FrameKind::ModelDelta: return 1;
+    case FrameKind::Linear: return 2;
+    default: return 0;
+  }
+}
+inline bool uses_model(FrameKind kind) { return kind == FrameKind::Model || kind == FrameKind::ModelDelta; }
+
+// Whether local frame k of a chunk may use `kind` (has_model: the file has a Model prediction).
+inline bool kind_usable(uint8_t kind, uint32_t k, bool has_model) {
+  return kind < kFrameKindCount && k >= frames_needed(FrameKind(kind)) && (has_model || !uses_model(FrameKind(kind)));
+}
+
+// Op bytes: m = b & 7, s = b >> 3. m != 0: skip s vertices, then a vertex whose axes a with
+// bit a of m set have non-zero residuals. m = 0: skip 32 (s + 1) vertices.
+constexpr uint32_t kLongSkip = 32;
+constexpr uint32_t kMaxShortSkip = 31;
+// Value bytes: c < 255 is the residual with zigzag(r) = c + 1; 255 is followed by a varint u
+// with zigzag(r) = u + 256.
+constexpr uint8_t kValueEscape = 255;
+
+// Stream coding byte.
+constexpr uint8_t kStreamRaw = 0;
+constexpr uint8_t kStreamZstd = 1;
+
+// The prediction of one frame of n = V * 3 values for the kinds other than Spatial, clamped to
+// int32 (q1, q2, M, M1 may be null when the kind does not read them).
+void predict_frame(FrameKind kind, const int32_t* q1, const int32_t* q2, const int32_t* M, const int32_t* M1,
+                   size_t n, int32_t* out);
+
+inline uint64_t zigzag(int64_t v) { return v < 0 ? 2 * uint64_t(-(v + 1)) + 1 : 2 * uint64_t(v); }
+inline int64_t unzigzag(uint64_t z) { return (z & 1) ? -int64_t(z >> 1) - 1 : int64_t(z >> 1); }
+
+}  // namespace fast_residual
+}  // namespace dcurve

@@ -1,0 +1,122 @@
+#include "codec/compress/fast_residual_encoder.h"
+
+#include <zstd.h>
+
+#include "codec/common/bytes.h"
+#include "codec/common/residual.h"
+#include "codec/common/residual_walk.h"
+#include "codec/compress/residual_encoder.h"
+
+namespace dcurve {
+
+using namespace fast_residual;
+
+void fast_frame_residuals(FrameKind kind, const int32_t* q, const int32_t* q1, const int32_t* q2, const int32_t* M,
+                          const int32_t* M1, size_t n, int64_t* r, int32_t* scratch) {
+  if (kind == FrameKind::Spatial) {
+    for (size_t i = 0; i < n; ++i) r[i] = int64_t(q[i]) - (i >= 3 ? q[i - 3] : 0);
+    return;
+  }
+  predict_frame(kind, q1, q2, M, M1, n, scratch);
+  for (size_t i = 0; i < n; ++i) r[i] = int64_t(q[i]) - scratch[i];
+}
+
+namespace {
+void append_value(int64_t r, std::vector<uint8_t>* values) {
+  const uint64_t z = zigzag(r);
+  if (z - 1 < kValueEscape) {
+    values->push_back(uint8_t(z - 1));
+    return;
+  }
+  values->push_back(kValueEscape);
+  for (uint64_t u = z - 256; ; u >>= 7) {
+    values->push_back(uint8_t(u & 0x7f) | (u >= 0x80 ? 0x80 : 0));
+    if (u < 0x80) break;
+  }
+}
+}  // namespace
+
+uint32_t append_frame_tokens(const int64_t* r, uint32_t V, std::vector<uint8_t>* ops, std::vector<uint8_t>* values) {
+  uint32_t count = 0, cursor = 0;
+  for (uint32_t v = 0; v < V; ++v) {
+    const int64_t* x = r + size_t(v) * 3;
+    const uint8_t mask = uint8_t((x[0] != 0) | (x[1] != 0) << 1 | (x[2] != 0) << 2);
+    if (mask == 0) continue;
+    uint32_t gap = v - cursor;
+    while (gap > kMaxShortSkip) {
+      const uint32_t s = std::min<uint32_t>(gap / kLongSkip, kMaxShortSkip + 1) - 1;
+      ops->push_back(uint8_t(s << 3));
+      gap -= kLongSkip * (s + 1);
+      ++count;
+    }
+    ops->push_back(uint8_t(gap << 3 | mask));
+    ++count;
+    for (int a = 0; a < 3; ++a)
+      if (x[a] != 0) append_value(x[a], values);
+    cursor = v + 1;
+  }
+  return count;
+}
+
+namespace {
+// A stream as its coding byte, sizes and bytes: zstd when that is smaller.
+void write_stream(const std::vector<uint8_t>& raw, ByteWriter* w) {
+  std::vector<uint8_t> packed(ZSTD_compressBound(raw.size()));
+  const size_t n = ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), 19);
+  if (!ZSTD_isError(n) && n + 2 < raw.size()) {
+    w->u8(kStreamZstd);
+    w->varint(raw.size());
+    w->varint(n);
+    w->bytes(packed.data(), n);
+    return;
+  }
+  w->u8(kStreamRaw);
+  w->varint(raw.size());
+  w->bytes(raw.data(), raw.size());
+}
+}  // namespace
+
+std::vector<uint8_t> encode_fast_chunk(uint32_t V, const uint8_t* kinds, uint32_t frames, const int32_t* q,
+                                       const int32_t* model) {
+  const size_t n = size_t(V) * 3;
+  std::vector<int64_t> r(n);
+  std::vector<int32_t> scratch(n);
+  std::vector<uint8_t> ops, values;
+  std::vector<uint32_t> op_counts, checksums;
+  for (uint32_t k = 0; k < frames; ++k) {
+    if (!kind_usable(kinds[k], k, model != nullptr)) return {};
+    const int32_t* f = q + k * n;
+    fast_frame_residuals(FrameKind(kinds[k]), f, k >= 1 ? f - n : nullptr, k >= 2 ? f - 2 * n : nullptr,
+                         model ? model + k * n : nullptr, model && k >= 1 ? model + (k - 1) * n : nullptr, n,
+                         r.data(), scratch.data());
+    op_counts.push_back(append_frame_tokens(r.data(), V, &ops, &values));
+    checksums.push_back(residual_walk::values_checksum(f, n));
+  }
+  ByteWriter w;
+  w.bytes(kinds, frames);
+  for (uint32_t c : op_counts) w.varint(c);
+  for (uint32_t c : checksums) w.u32(c);
+  write_stream(ops, &w);
+  write_stream(values, &w);
+  return std::move(w.data());
+}
+
+std::vector<uint8_t> encode_fast_residuals(const Model& model, const std::vector<int32_t>& q,
+                                           const std::vector<uint8_t>& kinds, uint32_t chunk_frames,
+                                           const std::vector<int32_t>* model_prediction) {
+  const uint32_t F = model.meta.frame_count, V = model.meta.vertex_count;
+  const size_t n = size_t(V) * 3;
+  if (chunk_frames == 0 || q.size() != n * F || kinds.size() != F ||
+      (model_prediction && model_prediction->size() != q.size()))
+    return {};
+  std::vector<std::vector<uint8_t>> chunks;
+  for (uint32_t c = 0; c < chunk_count(F, chunk_frames); ++c) {
+    const ChunkSpan span = chunk_span(F, chunk_frames, c);
+    chunks.push_back(encode_fast_chunk(V, kinds.data() + span.first, span.count, q.data() + n * span.first,
+                                       model_prediction ? model_prediction->data() + n * span.first : nullptr));
+    if (chunks.back().empty()) return {};
+  }
+  return assemble_residual_payload(kPayloadVersion, !model.faces.empty(), chunk_frames, chunks);
+}
+
+}  // namespace dcurve

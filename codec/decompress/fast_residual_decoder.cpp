@@ -1,0 +1,178 @@
+#include "codec/decompress/fast_residual_decoder.h"
+
+#include <zstd.h>
+
+#include <algorithm>
+
+#include "codec/common/bytes.h"
+#include "codec/common/crc32.h"
+#include "codec/common/error.h"
+#include "codec/common/residual_walk.h"
+
+namespace dcurve {
+
+using namespace fast_residual;
+
+size_t FastChunkDecoder::memory_bytes() const {
+  return sizeof(*this) + kinds_.capacity() + (op_counts_.capacity() + checksums_.capacity()) * 4 + ops_.capacity() +
+         values_.capacity();
+}
+
+namespace {
+// A stream of the chunk (coding byte, raw size, stored bytes) into out; max_raw bounds the
+// raw size before anything is allocated.
+// ZSTD_decompress alone: the WebAssembly build's zstd (web/zstd_shim) offers nothing else.
+bool read_stream(ByteReader& r, uint64_t max_raw, std::vector<uint8_t>* out, std::string* error) {
+  const uint8_t coding = r.u8();
+  const uint64_t raw = r.varint();
+  if (!r.ok) return fail(error, "fast residual chunk is truncated");
+  if (coding > kStreamZstd) return fail(error, "fast residual stream coding is unknown");
+  if (raw > max_raw) return fail(error, "fast residual stream claims more bytes than its frames can hold");
+  uint64_t stored = raw;
+  if (coding == kStreamZstd) {
+    stored = r.varint();
+    if (!r.ok) return fail(error, "fast residual chunk is truncated");
+    if (raw > std::max<uint64_t>(uint64_t(1) << 20, stored * 4096))
+      return fail(error, "fast residual stream claims an implausible decompressed size");
+  }
+  const uint8_t* p = r.take(size_t(std::min<uint64_t>(stored, SIZE_MAX)));
+  if (!p || stored > SIZE_MAX) return fail(error, "fast residual stream runs past the end of its chunk");
+  if (coding == kStreamRaw) {
+    out->assign(p, p + stored);
+    return true;
+  }
+  out->resize(size_t(raw));
+  const size_t n = ZSTD_decompress(out->data(), out->size(), p, size_t(stored));
+  if (ZSTD_isError(n) || n != raw) return fail(error, "fast residual stream does not decompress to its size");
+  return true;
+}
+
+// A value token at values[*pos]: false when the stream ends or the escape is malformed.
+bool read_value(const std::vector<uint8_t>& values, size_t* pos, int64_t* r) {
+  if (*pos >= values.size()) return false;
+  const uint8_t c = values[(*pos)++];
+  if (c != kValueEscape) {
+    *r = unzigzag(uint64_t(c) + 1);
+    return true;
+  }
+  uint64_t u = 0;
+  for (int shift = 0;; shift += 7) {
+    if (shift > 35 || *pos >= values.size()) return false;  // |r| < 2^32 needs at most 5 bytes
+    const uint8_t b = values[(*pos)++];
+    u |= uint64_t(b & 0x7f) << shift;
+    if (!(b & 0x80)) break;
+  }
+  *r = unzigzag(u + 256);
+  return true;
+}
+
+bool in_int32(int64_t v) { return v >= INT32_MIN && v <= INT32_MAX; }
+}  // namespace
+
+bool FastChunkDecoder::open(const uint8_t* bytes, size_t size, uint32_t V, uint32_t frames, bool has_model,
+                            std::string* error) {
+  V_ = V;
+  next_ = 0;
+  op_pos_ = value_pos_ = 0;
+  kinds_.clear();
+  ByteReader r(bytes, size);
+  const uint8_t* kinds = r.take(frames);
+  if (!kinds) return fail(error, "fast residual chunk is truncated");
+  for (uint32_t k = 0; k < frames; ++k)
+    if (!kind_usable(kinds[k], k, has_model))
+      return fail(error, "fast residual frame " + std::to_string(k) + " has a predictor it cannot use");
+  op_counts_.resize(frames);
+  uint64_t ops = 0;
+  for (uint32_t& count : op_counts_) {
+    const uint64_t c = r.varint();
+    if (!r.ok || c > V) return fail(error, "fast residual op count is out of range");
+    count = uint32_t(c);
+    ops += c;
+  }
+  checksums_.resize(frames);
+  for (uint32_t& c : checksums_) c = r.u32();
+  if (!r.ok) return fail(error, "fast residual chunk is truncated");
+  const uint64_t coords = uint64_t(V) * 3 * frames;
+  if (!read_stream(r, ops, &ops_, error) || !read_stream(r, coords * 6, &values_, error))
+    return false;
+  if (ops_.size() != ops) return fail(error, "fast residual op stream disagrees with the op counts");
+  if (r.remaining() != 0) return fail(error, "fast residual chunk has bytes after its streams");
+  kinds_.assign(kinds, kinds + frames);
+  return true;
+}
+
+// The frame's ops and values added to out; along_ids: out holds the residuals alone, to be
+// summed along vertex ids afterwards (Spatial), so no range check is needed yet.
+bool FastChunkDecoder::add_residuals(int32_t* out, bool along_ids) {
+  uint32_t cursor = 0;
+  const size_t end = op_pos_ + op_counts_[next_];
+  for (; op_pos_ < end; ++op_pos_) {
+    const uint8_t b = ops_[op_pos_];
+    const uint32_t m = b & 7, s = b >> 3;
+    if (m == 0) {
+      cursor += kLongSkip * (s + 1);
+      if (cursor >= V_) return false;
+      continue;
+    }
+    cursor += s;
+    if (cursor >= V_) return false;
+    int32_t* v = out + size_t(cursor) * 3;
+    for (int a = 0; a < 3; ++a) {
+      if (!(m >> a & 1)) continue;
+      int64_t r = 0;
+      if (!read_value(values_, &value_pos_, &r)) return false;
+      const int64_t x = (along_ids ? 0 : int64_t(v[a])) + r;
+      if (!in_int32(x)) return false;
+      v[a] = int32_t(x);
+    }
+    ++cursor;
+  }
+  return true;
+}
+
+namespace {
+// Spatial frames: out held the residuals; each value adds the same axis of the vertex before.
+bool sum_along_ids(int32_t* out, size_t n) {
+  bool ok = true;
+  for (size_t i = 3; i < n; ++i) {
+    const int64_t x = int64_t(out[i]) + out[i - 3];
+    ok &= in_int32(x);
+    out[i] = int32_t(x);
+  }
+  return ok;
+}
+}  // namespace
+
+bool FastChunkDecoder::decode_frame(const int32_t* q1, const int32_t* q2, const int32_t* M, const int32_t* M1,
+                                    int32_t* out, std::string* error) {
+  if (next_ >= kinds_.size()) return fail(error, "fast residual chunk has no more frames");
+  const size_t n = size_t(V_) * 3;
+  const FrameKind k = kind(next_);
+  predict_frame(k, q1, q2, M, M1, n, out);
+  const bool spatial = k == FrameKind::Spatial;
+  if (!add_residuals(out, spatial) || (spatial && !sum_along_ids(out, n)))
+    return fail(error, "fast residual frame " + std::to_string(next_) + " is corrupted or decodes out of range");
+  if (kVerifyChecksums && residual_walk::values_checksum(out, n) != checksums_[next_])
+    return fail(error, "fast residual frame " + std::to_string(next_) +
+                           " decodes to other values than were coded (checksum mismatch)");
+  if (++next_ == kinds_.size() && value_pos_ != values_.size())
+    return fail(error, "fast residual chunk has values left after its last frame");
+  return true;
+}
+
+bool decode_fast_chunk(uint32_t V, const uint8_t* bytes, size_t size, uint32_t frames, const int32_t* model,
+                       int32_t* q, std::string* error) {
+  FastChunkDecoder chunk;
+  if (!chunk.open(bytes, size, V, frames, model != nullptr, error)) return false;
+  const size_t n = size_t(V) * 3;
+  for (uint32_t k = 0; k < frames; ++k) {
+    const int32_t* q1 = k >= 1 ? q + (k - 1) * n : nullptr;
+    const int32_t* q2 = k >= 2 ? q + (k - 2) * n : nullptr;
+    const int32_t* M = model ? model + k * n : nullptr;
+    const int32_t* M1 = model && k >= 1 ? model + (k - 1) * n : nullptr;
+    if (!chunk.decode_frame(q1, q2, M, M1, q + k * n, error)) return false;
+  }
+  return true;
+}
+
+}  // namespace dcurve

@@ -1,0 +1,58 @@
+#include "encoder/rate/fast_low_rank.h"
+
+#include <algorithm>
+
+#include "codec/common/low_rank.h"
+#include "codec/compress/container_writer.h"
+#include "encoder/rate/low_rank.h"
+
+namespace dcurve {
+namespace {
+// Basis values on quarter grid steps: finer than format 3's coarsest, so the prediction the
+// frames lean on stays well inside a grid step.
+constexpr double kBasisStep = 0.25;
+// Counts tried in order; the search stops after the file grew twice in a row.
+constexpr uint32_t kCounts[] = {0, 2, 4, 6, 8, 12, 16, 24, 32, 48, 64};
+
+// The whole file's bytes with a fast layer coded over `trial` (its payload replaced).
+bool fast_file_bytes(Model* trial, const std::vector<std::vector<float>>& frames, const FastLayerOptions& options,
+                     size_t* bytes, std::string* error) {
+  if (!encode_fast_layer(trial, frames, options, error)) return false;
+  WriteOptions wo;
+  wo.connectivity = !trial->faces.empty();
+  *bytes = write_container(*trial, wo).size();
+  return true;
+}
+}  // namespace
+
+bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
+                          const FastLayerOptions& options, std::string* error) {
+  const uint32_t F = m->meta.frame_count;
+  const size_t n = size_t(m->meta.vertex_count) * 3;
+  Model base = *m;
+  base.low_rank = LowRankModel();
+  const GridComponents pca =
+      grid_components(rounded, F, n, std::min<uint32_t>(kMaxLowRankComponents, F > 1 ? F - 1 : 0), kMeanAnchor);
+  BasisMemo memo;
+  Model best;
+  size_t best_bytes = SIZE_MAX;
+  int worse = 0;
+  for (uint32_t K : kCounts) {
+    if (K > pca.weights.size() || worse >= 2) break;
+    Model trial = base;
+    if (K > 0 && !quantize_low_rank(pca, K, kBasisStep, 0, options.threads, &trial, &rounded, &memo)) break;
+    size_t bytes = 0;
+    if (!fast_file_bytes(&trial, frames, options, &bytes, error)) return false;
+    if (bytes < best_bytes) {
+      best_bytes = bytes;
+      best = std::move(trial);
+      worse = 0;
+    } else {
+      ++worse;
+    }
+  }
+  *m = std::move(best);
+  return true;
+}
+
+}  // namespace dcurve

@@ -1,0 +1,21 @@
+// The low-rank model of a fast-profile file (format 4). Format 3's choice (low_rank_choice.h)
+// judges a model by what it saves that coder, whose spatial predictors leave a low-rank model
+// little to do (one component on horse-gallop); the fast coder's one predictor per frame leans
+// on the model, so its count is chosen by the fast file's own bytes.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "codec/common/model.h"
+#include "encoder/rate/fast_plan.h"
+
+namespace dcurve {
+
+// m: a finished encode without PDE motions (its grid, faces, curves). rounded: the input's
+// nearest grid values (frame-major). Tries component counts at a fixed basis step, each with
+// a fast residual layer, and leaves in *m the smallest whole file's low-rank model and fast
+// payload (none, if no model pays).
+bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
+                          const FastLayerOptions& options, std::string* error);
+
+}  // namespace dcurve
