@@ -116,6 +116,11 @@ bool ChunkWindow::decode_fast_frame(Error* error) {
     }
   }
   const fast_residual::FrameKind kind = fast_.kind(k);
+  if ((fast_residual::frames_needed(kind) >= 1 && !q[1]) || (fast_residual::frames_needed(kind) >= 2 && !q[2])) {
+    fast_chunk_ = UINT32_MAX;  // cannot happen when frames go in order; reopen rather than read a null frame
+    if (error) *error = {Status::Internal, "frame " + std::to_string(f) + " lacks the frames before it"};
+    return false;
+  }
   const bool model = fast_residual::uses_model(kind);
   const int32_t* M1 = model && k >= 1 ? model_values(f - 1) : nullptr;
   const int32_t* M = model ? model_values(f) : nullptr;
