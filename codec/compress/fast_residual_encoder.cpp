@@ -2,6 +2,8 @@
 
 #include <zstd.h>
 
+#include <algorithm>
+
 #include "codec/common/bytes.h"
 #include "codec/common/residual.h"
 #include "codec/common/residual_walk.h"
