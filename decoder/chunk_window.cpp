@@ -20,7 +20,7 @@ size_t SharedState::memory_bytes() const {
   for (const std::vector<uint32_t>* a : {&traversal.order, &traversal.nb_offsets, &traversal.nb, &traversal.para_offsets,
                                           &traversal.para, &traversal.fit_offsets, &traversal.fit})
     bytes += a->capacity() * 4;
-  return bytes + predictor.memory_bytes() + (chunks ? chunks->memory_bytes() : 0);
+  return bytes + fast_traversal.bytes() + predictor.memory_bytes() + (chunks ? chunks->memory_bytes() : 0);
 }
 
 ChunkWindow::ChunkWindow(const SharedState& shared) : shared_(shared), rule_(shared.model.meta.inbetween) {}
@@ -81,7 +81,8 @@ bool ChunkWindow::open_fast_chunk(uint32_t c, Error* error) {
   if (kVerifyChecksums && crc32c(bytes, size_t(e.size)) != e.crc) why = "is corrupted (checksum mismatch)";
   const Model& m = shared_.model;
   const ChunkSpan span = chunk_span(m.meta.frame_count, shared_.index.chunk_frames, c);
-  if (why.empty() && !fast_.open(bytes, size_t(e.size), m.meta.vertex_count, span.count, shared_.predictor.active(), &why))
+  if (why.empty() && !fast_.open(bytes, size_t(e.size), m.meta.vertex_count, span.count, shared_.predictor.active(),
+                                  &shared_.fast_traversal, &why))
     why = ": " + why;
   if (!why.empty()) {
     if (error) *error = {Status::CorruptChunk, "chunk " + std::to_string(c) + " " + why};

@@ -7,8 +7,8 @@
 // in a Cursor: one chunk and the frame before it (and, under a cubic in-between rule,
 // copies of the up to six frames around the time evaluated), so memory does not grow with
 // the clip. A format 4 file (the fast profile) needs no chunk: a Cursor holds the last three
-// decoded frames and two frames of Model prediction, and reaches a frame by decoding its
-// chunk's frames up to it.
+// decoded frames, two frames of Model prediction and one of 64-bit spatial corrections, and
+// reaches a frame by decoding its chunk's frames up to it.
 //
 // Thread safety: a Decoder is immutable after opening; any number of threads may share
 // it. A Cursor belongs to one thread at a time (make one per thread). The Decoder's own

@@ -50,7 +50,8 @@ bool prepare(SharedState* shared, uint64_t file_bytes, std::string* error) {
     if (uint64_t(shared->index.chunk_frames) * m.meta.vertex_count * 3 * 2 > budget)
       return fail(error, "chunks are implausibly large for the file size");
     // A fast payload (format 4) reads no neighbours; the low-rank basis builds its own.
-    if (!shared->fast()) shared->traversal = build_traversal(m);
+    if (shared->fast()) shared->fast_traversal = fast_traversal(m.faces, m.meta.vertex_count);
+    else shared->traversal = build_traversal(m);
   }
   const bool has_traversal = m.residual.step > 0 && !shared->fast();
   return shared->predictor.build(m, budget, error, has_traversal ? &shared->traversal : nullptr);

@@ -22,7 +22,8 @@ namespace dcurve {
 struct SharedState {
   Model model;          // residual.payload: the chunk index only
   ResidualIndex index;  // empty without a residual layer
-  Traversal traversal;  // the residual layer's vertex order and neighbours
+  Traversal traversal;  // the residual layer's vertex order and neighbours (format 3)
+  FastTraversal fast_traversal;  // format 4's
   GridPredictor predictor;
   std::unique_ptr<ChunkSource> chunks;
 

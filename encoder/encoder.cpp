@@ -319,7 +319,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     fo.threads = opt.threads;
     const bool choose_model = opt.low_rank == -1 && !has_motion_model(m);
     if (choose_model ? !choose_fast_low_rank(&m, anim.frames, start.rounded, fo, error)
-                     : !encode_fast_layer(&m, anim.frames, fo, error))
+                     : !encode_fast_layer(&m, anim.frames, fo, error) || !fast_low_rank_basis(&m, error))
       return false;
   } else if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error)) {
     return false;

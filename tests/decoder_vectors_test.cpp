@@ -157,14 +157,15 @@ std::vector<Vector> recipes() {
   // second on the chunked recipe, whose PDE segments give kinds 3 and 4 their Model prediction.
   Model fast_frames = small_model(7);
   fast_frames.residual.payload =
-      encode_fast_residuals(fast_frames, testing::grid(6, 7), {0, 1, 2, 2, 0, 1, 2}, 4, nullptr);
+      encode_fast_residuals(fast_frames, testing::grid(6, 7), {0x10, 1, 0x12, 2, 0x10, 0x11, 2}, 4, nullptr);
   v.push_back({"fast_frames", fast_frames, {}});
   Model fast_model = chunked;
   std::vector<int32_t> prediction;
   std::string err;
   EXPECT_TRUE(model_grid_prediction(fast_model, UINT64_MAX, &prediction, &err)) << err;
   fast_model.residual.payload =
-      encode_fast_residuals(fast_model, testing::grid(6, 10), {3, 4, 4, 1, 3, 4, 2, 4, 3, 0}, 4, &prediction);
+      encode_fast_residuals(fast_model, testing::grid(6, 10), {3, 0x14, 4, 1, 0x13, 4, 2, 0x14, 3, 0}, 4,
+                            &prediction);
   v.push_back({"fast_model_chunked", fast_model, {}});
   return v;
 }

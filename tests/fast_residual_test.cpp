@@ -4,12 +4,14 @@
 // decoder reaches any frame in any order as a sequential playback does.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 
 #include "codec/common/container_format.h"
 #include "codec/common/crc32.h"
 #include "codec/common/fast_residual.h"
+#include "codec/common/fast_traversal.h"
 #include "codec/compress/fast_residual_encoder.h"
 #include "codec/decompress/container_reader.h"
 #include "codec/decompress/fast_residual_decoder.h"
@@ -28,6 +30,12 @@ using test::refused_or_decodes_as;
 
 constexpr uint32_t kV = 90, kFrames = 6;
 constexpr size_t kN = size_t(kV) * 3;
+constexpr uint8_t kS = fast_residual::kSpatialFlag;
+
+// A 9 x 10 grid's traversal, or (faces false) the vertex-id chain of a file without faces.
+FastTraversal traversal(bool faces = true) {
+  return fast_traversal(faces ? grid_faces(9, 10) : std::vector<uint32_t>(), kV);
+}
 
 // Frames of smooth motion with sparse noise, and a "model" that predicts them roughly: the
 // residuals are mostly small with a few large ones (escapes) and long zero runs.
@@ -50,24 +58,50 @@ Clip make_clip(uint32_t seed) {
   return c;
 }
 
-std::vector<uint8_t> chunk_of(const Clip& c, const std::vector<uint8_t>& kinds, bool with_model) {
-  return encode_fast_chunk(kV, kinds.data(), kFrames, c.q.data(), with_model ? c.model.data() : nullptr);
+std::vector<uint8_t> chunk_of(const Clip& c, const std::vector<uint8_t>& kinds, bool with_model,
+                              const FastTraversal& t = traversal()) {
+  return encode_fast_chunk(t, kV, kinds.data(), kFrames, c.q.data(), with_model ? c.model.data() : nullptr);
 }
 
 TEST(FastResidual, EveryKindRoundTripsExactly) {
   const Clip c = make_clip(1);
-  const std::vector<std::vector<uint8_t>> plans = {
-      {0, 0, 0, 0, 0, 0}, {0, 1, 1, 1, 1, 1}, {0, 1, 2, 2, 2, 2}, {3, 3, 3, 3, 3, 3}, {3, 4, 4, 4, 4, 4}, {3, 1, 2, 4, 0, 3}};
-  for (const std::vector<uint8_t>& kinds : plans) {
-    const bool model = kinds[0] == 3;
-    const std::vector<uint8_t> bytes = chunk_of(c, kinds, model);
-    ASSERT_FALSE(bytes.empty());
-    std::vector<int32_t> out(c.q.size(), 7);
-    std::string err;
-    ASSERT_TRUE(decode_fast_chunk(kV, bytes.data(), bytes.size(), kFrames, model ? c.model.data() : nullptr,
-                                  out.data(), &err))
-        << err;
-    EXPECT_EQ(out, c.q) << int(kinds[1]);
+  const std::vector<std::vector<uint8_t>> plans = {{kS, kS, kS, kS, kS, kS},
+                                                   {0, 1, 1, 1 | kS, 1, 1},
+                                                   {kS, 1, 2, 2, 2 | kS, 2},
+                                                   {3, 3, 3 | kS, 3, 3, 3},
+                                                   {3, 4, 4, 4 | kS, 4, 4},
+                                                   {3 | kS, 1, 2, 4 | kS, 0, 3}};
+  for (bool faces : {true, false}) {
+    const FastTraversal t = traversal(faces);
+    for (const std::vector<uint8_t>& kinds : plans) {
+      const bool model = (kinds[0] & 0x0f) == 3;
+      const std::vector<uint8_t> bytes = chunk_of(c, kinds, model, t);
+      ASSERT_FALSE(bytes.empty());
+      std::vector<int32_t> out(c.q.size(), 7);
+      std::string err;
+      ASSERT_TRUE(decode_fast_chunk(t, kV, bytes.data(), bytes.size(), kFrames, model ? c.model.data() : nullptr,
+                                    out.data(), &err))
+          << err;
+      EXPECT_EQ(out, c.q) << int(kinds[1]) << " faces " << faces;
+    }
+  }
+}
+
+TEST(FastResidual, TheTraversalReachesEveryVertexFromVerticesBeforeIt) {
+  for (bool faces : {true, false}) {
+    const FastTraversal t = traversal(faces);
+    ASSERT_EQ(t.order.size(), kV);
+    std::vector<int> position(kV, -1);
+    for (size_t i = 0; i < kV; ++i) {
+      ASSERT_EQ(position[t.order[i]], -1) << "vertex twice";
+      position[t.order[i]] = int(i);
+      const int refs = t.type[i] == uint8_t(FastSpatial::Parallelogram) ? 3 : t.type[i];
+      for (int j = 0; j < refs; ++j) EXPECT_LT(position[t.refs[i * 3 + size_t(j)]], int(i)) << i;
+    }
+    if (faces) {  // a regular grid: all but the first few vertices by parallelogram
+      const long para = std::count(t.type.begin(), t.type.end(), uint8_t(FastSpatial::Parallelogram));
+      EXPECT_GE(para, long(kV) - 12);
+    }
   }
 }
 
@@ -76,24 +110,29 @@ TEST(FastResidual, AKindThatReadsWhatTheChunkLacksIsNotWritten) {
   EXPECT_TRUE(chunk_of(c, {1, 1, 1, 1, 1, 1}, false).empty());  // frame 0 has no frame before it
   EXPECT_TRUE(chunk_of(c, {0, 2, 2, 2, 2, 2}, false).empty());  // frame 1 has one, not two
   EXPECT_TRUE(chunk_of(c, {3, 3, 3, 3, 3, 3}, false).empty());  // no Model prediction
+  EXPECT_TRUE(chunk_of(c, {0x20, 0, 0, 0, 0, 0}, false).empty());  // an unknown flag
 }
 
 // Decoding `bytes` fails with an error (and never reads outside them: ASan in CI).
 void expect_rejected(const std::vector<uint8_t>& bytes, const Clip& c, const char* what) {
   std::vector<int32_t> out(c.q.size());
   std::string err;
-  EXPECT_FALSE(decode_fast_chunk(kV, bytes.data(), bytes.size(), kFrames, c.model.data(), out.data(), &err)) << what;
+  EXPECT_FALSE(decode_fast_chunk(traversal(), kV, bytes.data(), bytes.size(), kFrames, c.model.data(), out.data(),
+                                 &err))
+      << what;
   EXPECT_FALSE(err.empty()) << what;
 }
 
 TEST(FastResidual, DamagedChunksAreRejected) {
   const Clip c = make_clip(3);
-  const std::vector<uint8_t> good = chunk_of(c, {3, 4, 4, 1, 2, 4}, true);
+  const std::vector<uint8_t> good = chunk_of(c, {3, 4 | kS, 4, 1, 2 | kS, 4}, true);
   for (size_t cut = 0; cut < good.size(); cut += 7)
     expect_rejected(std::vector<uint8_t>(good.begin(), good.begin() + std::ptrdiff_t(cut)), c, "truncated");
   std::vector<uint8_t> bad = good;
   bad[0] = fast_residual::kFrameKindCount;  // a kind out of range
   expect_rejected(bad, c, "kind out of range");
+  bad[0] = 0x23;  // an unknown flag
+  expect_rejected(bad, c, "unknown flag");
   bad = good;
   bad[0] = 1;  // frame 0 with a kind that reads the frame before
   expect_rejected(bad, c, "kind not usable");
@@ -110,7 +149,7 @@ TEST(FastResidual, DamagedChunksAreRejected) {
 }
 
 TEST(FastResidual, StreamsOutOfRangeAreRejected) {
-  // A hand-made chunk of one frame of kV vertices, Spatial, raw streams.
+  // A hand-made chunk of one frame of kV vertices, kind None, raw streams.
   auto chunk = [](const std::vector<uint8_t>& ops, const std::vector<uint8_t>& values, uint32_t checksum) {
     std::vector<uint8_t> b = {0, uint8_t(ops.size())};
     for (int k = 0; k < 4; ++k) b.push_back(uint8_t(checksum >> (8 * k)));
@@ -120,15 +159,15 @@ TEST(FastResidual, StreamsOutOfRangeAreRejected) {
     b.insert(b.end(), values.begin(), values.end());
     return b;
   };
-  auto decodes = [](const std::vector<uint8_t>& bytes) {
+  const FastTraversal t = traversal();
+  auto decodes = [&t](const std::vector<uint8_t>& bytes) {
     std::vector<int32_t> out(kN);
     std::string err;
-    return decode_fast_chunk(kV, bytes.data(), bytes.size(), 1, nullptr, out.data(), &err);
+    return decode_fast_chunk(t, kV, bytes.data(), bytes.size(), 1, nullptr, out.data(), &err);
   };
-  // Vertex 0 axis 0 = 1: op (skip 0, mask 1), value 1 (zigzag 2 -> byte 1); every later
-  // vertex sums along ids, so each has x = 1.
+  // Vertex 0 axis 0 = 1: op (skip 0, mask 1), value 1 (zigzag 2 -> byte 1).
   std::vector<int32_t> expect(kN, 0);
-  for (uint32_t v = 0; v < kV; ++v) expect[size_t(v) * 3] = 1;
+  expect[0] = 1;
   const uint32_t sum = crc32c(expect.data(), expect.size() * 4);
   EXPECT_TRUE(decodes(chunk({1}, {1}, sum)));
   EXPECT_FALSE(decodes(chunk({1}, {1}, sum ^ 1)));                  // checksum

@@ -24,8 +24,8 @@ void predict_frame(FrameKind kind, const int32_t* q1, const int32_t* q2, const i
     case FrameKind::ModelDelta:
       for (size_t i = 0; i < n; ++i) out[i] = to_int32(int64_t(M[i]) + q1[i] - M1[i]);
       return;
-    case FrameKind::Spatial:
-      std::fill(out, out + n, 0);  // the decoder adds its residuals and sums along vertex ids
+    case FrameKind::None:
+      std::fill(out, out + n, 0);
       return;
   }
 }

@@ -13,16 +13,21 @@ namespace fast_residual {
 
 constexpr uint8_t kPayloadVersion = 5;
 
-// A frame's predictor. q1, q2: the chunk's frames one and two before; M, M1: the Model
-// prediction of this frame and of the one before.
+// A frame's predictor: a base kind (bits 0-3) and the spatial flag (bit 4). q1, q2: the
+// chunk's frames one and two before; M, M1: the Model prediction of this frame and of the
+// one before. With the flag, what is left after the base prediction is predicted again from
+// the vertices before it in the fast traversal (codec/common/fast_traversal.h).
 enum class FrameKind : uint8_t {
-  Spatial = 0,     // the same axis of the previous vertex id (0 for vertex 0): no other frame
+  None = 0,        // 0: with the spatial flag, a frame coded from itself alone
   Previous = 1,    // q1
   Linear = 2,      // 2 q1 - q2
   Model = 3,       // M
   ModelDelta = 4,  // M + q1 - M1: the model plus the previous frame's correction
 };
 constexpr uint8_t kFrameKindCount = 5;
+constexpr uint8_t kSpatialFlag = 0x10;
+inline FrameKind base_kind(uint8_t kind) { return FrameKind(kind & 0x0f); }
+inline bool has_spatial(uint8_t kind) { return (kind & kSpatialFlag) != 0; }
 
 // Frames of the chunk decoded before local frame k that `kind` reads.
 inline uint32_t frames_needed(FrameKind kind) {
@@ -35,9 +40,12 @@ inline uint32_t frames_needed(FrameKind kind) {
 }
 inline bool uses_model(FrameKind kind) { return kind == FrameKind::Model || kind == FrameKind::ModelDelta; }
 
-// Whether local frame k of a chunk may use `kind` (has_model: the file has a Model prediction).
+// Whether local frame k of a chunk may use the kind byte `kind` (has_model: the file has a
+// Model prediction).
 inline bool kind_usable(uint8_t kind, uint32_t k, bool has_model) {
-  return kind < kFrameKindCount && k >= frames_needed(FrameKind(kind)) && (has_model || !uses_model(FrameKind(kind)));
+  const FrameKind base = base_kind(kind);
+  return (kind & ~(kSpatialFlag | 0x0f)) == 0 && uint8_t(base) < kFrameKindCount && k >= frames_needed(base) &&
+         (has_model || !uses_model(base));
 }
 
 // Op bytes: m = b & 7, s = b >> 3. m != 0: skip s vertices, then a vertex whose axes a with
@@ -52,8 +60,8 @@ constexpr uint8_t kValueEscape = 255;
 constexpr uint8_t kStreamRaw = 0;
 constexpr uint8_t kStreamZstd = 1;
 
-// The prediction of one frame of n = V * 3 values for the kinds other than Spatial, clamped to
-// int32 (q1, q2, M, M1 may be null when the kind does not read them).
+// The base prediction of one frame of n = V * 3 values, clamped to int32 (q1, q2, M, M1 may
+// be null when the kind does not read them).
 void predict_frame(FrameKind kind, const int32_t* q1, const int32_t* q2, const int32_t* M, const int32_t* M1,
                    size_t n, int32_t* out);
 

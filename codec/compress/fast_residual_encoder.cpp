@@ -13,14 +13,18 @@ namespace dcurve {
 
 using namespace fast_residual;
 
-void fast_frame_residuals(FrameKind kind, const int32_t* q, const int32_t* q1, const int32_t* q2, const int32_t* M,
-                          const int32_t* M1, size_t n, int64_t* r, int32_t* scratch) {
-  if (kind == FrameKind::Spatial) {
-    for (size_t i = 0; i < n; ++i) r[i] = int64_t(q[i]) - (i >= 3 ? q[i - 3] : 0);
+void fast_frame_residuals(uint8_t kind, const FastTraversal& t, const int32_t* q, const int32_t* q1,
+                          const int32_t* q2, const int32_t* M, const int32_t* M1, size_t n, int64_t* r,
+                          int32_t* scratch) {
+  predict_frame(base_kind(kind), q1, q2, M, M1, n, scratch);
+  if (!has_spatial(kind)) {
+    for (size_t i = 0; i < n; ++i) r[i] = int64_t(q[i]) - scratch[i];
     return;
   }
-  predict_frame(kind, q1, q2, M, M1, n, scratch);
-  for (size_t i = 0; i < n; ++i) r[i] = int64_t(q[i]) - scratch[i];
+  std::vector<int64_t> e(n);
+  for (size_t i = 0; i < n; ++i) e[i] = int64_t(q[i]) - scratch[i];
+  for (size_t i = 0; i < n / 3; ++i)
+    for (int a = 0; a < 3; ++a) r[i * 3 + size_t(a)] = e[size_t(t.order[i]) * 3 + size_t(a)] - fast_spatial(t, i, e.data(), a);
 }
 
 namespace {
@@ -78,8 +82,8 @@ void write_stream(const std::vector<uint8_t>& raw, ByteWriter* w) {
 }
 }  // namespace
 
-std::vector<uint8_t> encode_fast_chunk(uint32_t V, const uint8_t* kinds, uint32_t frames, const int32_t* q,
-                                       const int32_t* model) {
+std::vector<uint8_t> encode_fast_chunk(const FastTraversal& t, uint32_t V, const uint8_t* kinds, uint32_t frames,
+                                       const int32_t* q, const int32_t* model) {
   const size_t n = size_t(V) * 3;
   std::vector<int64_t> r(n);
   std::vector<int32_t> scratch(n);
@@ -88,7 +92,7 @@ std::vector<uint8_t> encode_fast_chunk(uint32_t V, const uint8_t* kinds, uint32_
   for (uint32_t k = 0; k < frames; ++k) {
     if (!kind_usable(kinds[k], k, model != nullptr)) return {};
     const int32_t* f = q + k * n;
-    fast_frame_residuals(FrameKind(kinds[k]), f, k >= 1 ? f - n : nullptr, k >= 2 ? f - 2 * n : nullptr,
+    fast_frame_residuals(kinds[k], t, f, k >= 1 ? f - n : nullptr, k >= 2 ? f - 2 * n : nullptr,
                          model ? model + k * n : nullptr, model && k >= 1 ? model + (k - 1) * n : nullptr, n,
                          r.data(), scratch.data());
     op_counts.push_back(append_frame_tokens(r.data(), V, &ops, &values));
@@ -111,10 +115,11 @@ std::vector<uint8_t> encode_fast_residuals(const Model& model, const std::vector
   if (chunk_frames == 0 || q.size() != n * F || kinds.size() != F ||
       (model_prediction && model_prediction->size() != q.size()))
     return {};
+  const FastTraversal t = fast_traversal(model.faces, V);
   std::vector<std::vector<uint8_t>> chunks;
   for (uint32_t c = 0; c < chunk_count(F, chunk_frames); ++c) {
     const ChunkSpan span = chunk_span(F, chunk_frames, c);
-    chunks.push_back(encode_fast_chunk(V, kinds.data() + span.first, span.count, q.data() + n * span.first,
+    chunks.push_back(encode_fast_chunk(t, V, kinds.data() + span.first, span.count, q.data() + n * span.first,
                                        model_prediction ? model_prediction->data() + n * span.first : nullptr));
     if (chunks.back().empty()) return {};
   }

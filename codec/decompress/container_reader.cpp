@@ -287,6 +287,10 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
   if (!seen[2] && model->curves.offsets.empty())
     model->curves = singleton_curves(model->meta.vertex_count);
   if (!seen[3]) model->segments.clear();
+  const std::vector<uint8_t>& basis = model->low_rank.basis_payload;
+  if (!basis.empty() && basis[0] == fast_residual::kPayloadVersion && h.version_major != kFastFormatVersionMajor)
+    return fail(error, "section LRNK's basis is a format 4 payload in a file of format " +
+                           std::to_string(h.version_major));
   if (seen[5]) {
     if (!check_chunk_index(model, file_bytes - h.head_bytes, h.version_major, error)) return false;
   } else if (file_bytes != h.head_bytes) {

@@ -15,7 +15,7 @@ using namespace fast_residual;
 
 size_t FastChunkDecoder::memory_bytes() const {
   return sizeof(*this) + kinds_.capacity() + (op_counts_.capacity() + checksums_.capacity()) * 4 + ops_.capacity() +
-         values_.capacity();
+         values_.capacity() + spatial_.capacity() * sizeof(int64_t);
 }
 
 namespace {
@@ -70,7 +70,8 @@ bool in_int32(int64_t v) { return v >= INT32_MIN && v <= INT32_MAX; }
 }  // namespace
 
 bool FastChunkDecoder::open(const uint8_t* bytes, size_t size, uint32_t V, uint32_t frames, bool has_model,
-                            std::string* error) {
+                            const FastTraversal* traversal, std::string* error) {
+  traversal_ = traversal;
   V_ = V;
   next_ = 0;
   op_pos_ = value_pos_ = 0;
@@ -101,56 +102,79 @@ bool FastChunkDecoder::open(const uint8_t* bytes, size_t size, uint32_t V, uint3
   return true;
 }
 
-// The frame's ops and values added to out; along_ids: out holds the residuals alone, to be
-// summed along vertex ids afterwards (Spatial), so no range check is needed yet.
-bool FastChunkDecoder::add_residuals(int32_t* out, bool along_ids) {
+namespace {
+// Walks one frame's op bytes ops[*pos, end), calling at(slot, axis, r) for each non-zero
+// residual, slot being the cursor (a vertex id, or a traversal position); false when an op
+// passes the last slot or a value is malformed.
+template <class At>
+bool walk_ops(const std::vector<uint8_t>& ops, size_t* pos, size_t end, const std::vector<uint8_t>& values,
+              size_t* value_pos, uint32_t V, At at) {
   uint32_t cursor = 0;
-  const size_t end = op_pos_ + op_counts_[next_];
-  for (; op_pos_ < end; ++op_pos_) {
-    const uint8_t b = ops_[op_pos_];
+  for (; *pos < end; ++*pos) {
+    const uint8_t b = ops[*pos];
     const uint32_t m = b & 7, s = b >> 3;
     if (m == 0) {
       cursor += kLongSkip * (s + 1);
-      if (cursor >= V_) return false;
+      if (cursor >= V) return false;
       continue;
     }
     cursor += s;
-    if (cursor >= V_) return false;
-    int32_t* v = out + size_t(cursor) * 3;
+    if (cursor >= V) return false;
     for (int a = 0; a < 3; ++a) {
       if (!(m >> a & 1)) continue;
       int64_t r = 0;
-      if (!read_value(values_, &value_pos_, &r)) return false;
-      const int64_t x = (along_ids ? 0 : int64_t(v[a])) + r;
-      if (!in_int32(x)) return false;
-      v[a] = int32_t(x);
+      if (!read_value(values, value_pos, &r) || !at(cursor, a, r)) return false;
     }
     ++cursor;
   }
   return true;
 }
-
-namespace {
-// Spatial frames: out held the residuals; each value adds the same axis of the vertex before.
-bool sum_along_ids(int32_t* out, size_t n) {
-  bool ok = true;
-  for (size_t i = 3; i < n; ++i) {
-    const int64_t x = int64_t(out[i]) + out[i - 3];
-    ok &= in_int32(x);
-    out[i] = int32_t(x);
-  }
-  return ok;
-}
 }  // namespace
+
+// The frame's residuals added to its base prediction in out, in vertex-id order.
+bool FastChunkDecoder::add_residuals(int32_t* out) {
+  return walk_ops(ops_, &op_pos_, op_pos_ + op_counts_[next_], values_, &value_pos_, V_,
+                  [out](uint32_t v, int a, int64_t r) {
+                    int32_t& x = out[size_t(v) * 3 + size_t(a)];
+                    const int64_t sum = int64_t(x) + r;
+                    x = int32_t(sum);
+                    return in_int32(sum);
+                  });
+}
+
+// Spatial frames: residuals by traversal position, each then added to what the traversal
+// predicts from the vertices before it; the sum is the correction of the base prediction.
+bool FastChunkDecoder::add_spatial_residuals(int32_t* out) {
+  const FastTraversal& t = *traversal_;
+  spatial_.assign(size_t(V_) * 3, 0);
+  int64_t* e = spatial_.data();
+  const bool ok = walk_ops(ops_, &op_pos_, op_pos_ + op_counts_[next_], values_, &value_pos_, V_,
+                           [&t, e](uint32_t i, int a, int64_t r) {
+                             e[size_t(t.order[i]) * 3 + size_t(a)] = r;
+                             return true;
+                           });
+  if (!ok) return false;
+  for (size_t i = 0; i < V_; ++i) {
+    const size_t v = size_t(t.order[i]) * 3;
+    for (int a = 0; a < 3; ++a) {
+      e[v + size_t(a)] += fast_spatial(t, i, e, a);
+      const int64_t q = int64_t(out[v + size_t(a)]) + e[v + size_t(a)];
+      if (!in_int32(q)) return false;  // also keeps every e within 2^33, so the sums stay small
+      out[v + size_t(a)] = int32_t(q);
+    }
+  }
+  return true;
+}
 
 bool FastChunkDecoder::decode_frame(const int32_t* q1, const int32_t* q2, const int32_t* M, const int32_t* M1,
                                     int32_t* out, std::string* error) {
   if (next_ >= kinds_.size()) return fail(error, "fast residual chunk has no more frames");
   const size_t n = size_t(V_) * 3;
-  const FrameKind k = kind(next_);
-  predict_frame(k, q1, q2, M, M1, n, out);
-  const bool spatial = k == FrameKind::Spatial;
-  if (!add_residuals(out, spatial) || (spatial && !sum_along_ids(out, n)))
+  predict_frame(kind(next_), q1, q2, M, M1, n, out);
+  const bool spatial = has_spatial(kinds_[next_]);
+  if (spatial && (!traversal_ || traversal_->order.size() != V_))
+    return fail(error, "fast residual frame needs the vertex traversal, which was not supplied");
+  if (!(spatial ? add_spatial_residuals(out) : add_residuals(out)))
     return fail(error, "fast residual frame " + std::to_string(next_) + " is corrupted or decodes out of range");
   if (kVerifyChecksums && residual_walk::values_checksum(out, n) != checksums_[next_])
     return fail(error, "fast residual frame " + std::to_string(next_) +
@@ -160,10 +184,10 @@ bool FastChunkDecoder::decode_frame(const int32_t* q1, const int32_t* q2, const 
   return true;
 }
 
-bool decode_fast_chunk(uint32_t V, const uint8_t* bytes, size_t size, uint32_t frames, const int32_t* model,
-                       int32_t* q, std::string* error) {
+bool decode_fast_chunk(const FastTraversal& traversal, uint32_t V, const uint8_t* bytes, size_t size, uint32_t frames,
+                       const int32_t* model, int32_t* q, std::string* error) {
   FastChunkDecoder chunk;
-  if (!chunk.open(bytes, size, V, frames, model != nullptr, error)) return false;
+  if (!chunk.open(bytes, size, V, frames, model != nullptr, &traversal, error)) return false;
   const size_t n = size_t(V) * 3;
   for (uint32_t k = 0; k < frames; ++k) {
     const int32_t* q1 = k >= 1 ? q + (k - 1) * n : nullptr;

@@ -8,19 +8,22 @@
 #include <vector>
 
 #include "codec/common/fast_residual.h"
+#include "codec/common/fast_traversal.h"
 
 namespace dcurve {
 
 class FastChunkDecoder {
  public:
   // Parses the frame table of a chunk of `frames` frames of V vertices (its `size` bytes)
-  // and decompresses its streams. has_model: the file has a Model prediction. False with a
+  // and decompresses its streams. has_model: the file has a Model prediction; traversal:
+  // fast_traversal of the file's faces, which must outlive the decoding. False with a
   // message when the table or a stream is malformed; reads nothing outside the bytes.
-  bool open(const uint8_t* bytes, size_t size, uint32_t V, uint32_t frames, bool has_model, std::string* error);
+  bool open(const uint8_t* bytes, size_t size, uint32_t V, uint32_t frames, bool has_model,
+            const FastTraversal* traversal, std::string* error);
   // Local frame next() is the one decode_frame decodes; frames go in order from 0.
   uint32_t next() const { return next_; }
   uint32_t frames() const { return uint32_t(kinds_.size()); }
-  fast_residual::FrameKind kind(uint32_t k) const { return fast_residual::FrameKind(kinds_[k]); }
+  fast_residual::FrameKind kind(uint32_t k) const { return fast_residual::base_kind(kinds_[k]); }
   // Decodes frame next() into out (V * 3 values): q1, q2 the frames one and two before it,
   // M and M1 the Model prediction of this frame and the one before, each null when its
   // kind does not read it. Checks the frame's checksum, and after the last frame that the
@@ -30,8 +33,11 @@ class FastChunkDecoder {
   size_t memory_bytes() const;
 
  private:
-  bool add_residuals(int32_t* out, bool along_ids);
+  bool add_residuals(int32_t* out);
+  bool add_spatial_residuals(int32_t* out);
 
+  const FastTraversal* traversal_ = nullptr;
+  std::vector<int64_t> spatial_;  // per vertex and axis: residuals, then what the traversal predicts
   uint32_t V_ = 0, next_ = 0;
   std::vector<uint8_t> kinds_;
   std::vector<uint32_t> op_counts_, checksums_;
@@ -41,7 +47,7 @@ class FastChunkDecoder {
 
 // Decodes every frame of one chunk into q (frames * V * 3 values); model: the chunk's Model
 // prediction, frames * V * 3 values, or null without one.
-bool decode_fast_chunk(uint32_t V, const uint8_t* bytes, size_t size, uint32_t frames, const int32_t* model,
-                       int32_t* q, std::string* error);
+bool decode_fast_chunk(const FastTraversal& traversal, uint32_t V, const uint8_t* bytes, size_t size, uint32_t frames,
+                       const int32_t* model, int32_t* q, std::string* error);
 
 }  // namespace dcurve

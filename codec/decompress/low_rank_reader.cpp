@@ -1,6 +1,5 @@
 #include "codec/decompress/low_rank_reader.h"
 
-#include "codec/common/fast_residual.h"
 #include "codec/common/int_coder.h"
 #include "codec/common/low_rank.h"
 #include "codec/common/low_rank_format.h"
@@ -81,7 +80,7 @@ bool parse_low_rank(ByteReader& r, Model* m) {
     }
   const uint64_t n = r.varint();
   const uint8_t* p = r.ok && n <= r.remaining() ? r.take(size_t(n)) : nullptr;
-  if (!p || (n > 0 && p[0] == fast_residual::kPayloadVersion)) return false;  // the basis is a payload of format 3's coder
+  if (!p) return false;
   lr.basis_payload.assign(p, p + n);
   lr.poses.clear();
   if (third & kPosed) {

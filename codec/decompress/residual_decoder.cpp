@@ -182,8 +182,10 @@ bool decode_all(const Model& model, std::vector<int32_t>* q, ResidualPlan* plan,
   const std::vector<uint8_t>& payload = model.residual.payload;
   ResidualIndex index;
   if (!read_inline_index(model, &index, error)) return false;
+  const bool fast = index.version == fast_residual::kPayloadVersion;
   Traversal owned;
-  const Traversal& trav = traversal_for(model, options, &owned);
+  const Traversal& trav = fast ? owned : traversal_for(model, options, &owned);
+  const FastTraversal fast_trav = fast ? fast_traversal(model.faces, V) : FastTraversal();
   q->assign(total, 0);
   plan->chunk_frames = index.chunk_frames;
   plan->chunks.assign(index.chunks.size(), PredictorPlan());
@@ -199,8 +201,7 @@ bool decode_all(const Model& model, std::vector<int32_t>* q, ResidualPlan* plan,
     chunk_options.zero_block_flags = has_zero_block_flags(index.version);
     std::string why;
     int32_t* values = q->data() + stride * span.first;
-    const bool ok = index.version == fast_residual::kPayloadVersion
-                        ? decode_fast_chunk(V, bytes, size_t(e.size), span.count,
+    const bool ok = fast ? decode_fast_chunk(fast_trav, V, bytes, size_t(e.size), span.count,
                                             chunk_options.model_prediction ? chunk_options.model_prediction->data()
                                                                            : nullptr,
                                             values, &why)

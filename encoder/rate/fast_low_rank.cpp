@@ -2,8 +2,13 @@
 
 #include <algorithm>
 
+#include "codec/common/error.h"
+#include "codec/common/fast_residual.h"
 #include "codec/common/low_rank.h"
 #include "codec/compress/container_writer.h"
+#include "codec/compress/fast_residual_encoder.h"
+#include "codec/decompress/model_prediction.h"
+#include "codec/decompress/residual_decoder.h"
 #include "encoder/rate/low_rank.h"
 
 namespace dcurve {
@@ -25,6 +30,19 @@ bool fast_file_bytes(Model* trial, const std::vector<std::vector<float>>& frames
 }
 }  // namespace
 
+bool fast_low_rank_basis(Model* m, std::string* error) {
+  if (m->low_rank.components == 0) return true;
+  const Model pseudo = low_rank_basis_model(*m);
+  std::vector<int32_t> values;
+  if (!decode_residuals(pseudo, &values, error)) return false;
+  const std::vector<uint8_t> kinds(pseudo.meta.frame_count, fast_residual::kSpatialFlag);  // None + spatial
+  std::vector<uint8_t> payload =
+      encode_fast_residuals(pseudo, values, kinds, pseudo.meta.frame_count, nullptr);
+  if (payload.empty()) return fail(error, "internal error: the low-rank basis does not code as a fast payload");
+  m->low_rank.basis_payload = std::move(payload);
+  return true;
+}
+
 bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
                           const FastLayerOptions& options, std::string* error) {
   const uint32_t F = m->meta.frame_count;
@@ -33,14 +51,15 @@ bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frame
   base.low_rank = LowRankModel();
   const GridComponents pca =
       grid_components(rounded, F, n, std::min<uint32_t>(kMaxLowRankComponents, F > 1 ? F - 1 : 0), kMeanAnchor);
-  BasisMemo memo;
   Model best;
   size_t best_bytes = SIZE_MAX;
   int worse = 0;
   for (uint32_t K : kCounts) {
     if (K > pca.weights.size() || worse >= 2) break;
     Model trial = base;
-    if (K > 0 && !quantize_low_rank(pca, K, kBasisStep, 0, options.threads, &trial, &rounded, &memo)) break;
+    if (K > 0 && !quantize_low_rank(pca, K, kBasisStep, 0, options.threads, &trial, &rounded, nullptr, nullptr,
+                                    nullptr, BasisCoding::Fast))
+      break;
     size_t bytes = 0;
     if (!fast_file_bytes(&trial, frames, options, &bytes, error)) return false;
     if (bytes < best_bytes) {

@@ -18,4 +18,9 @@ namespace dcurve {
 bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
                           const FastLayerOptions& options, std::string* error);
 
+// Recodes m's low-rank mean and basis (if any) as a fast payload, each pseudo-frame from
+// itself alone through the fast traversal, so a decoder opens the file without format 3's
+// spatial weight tables. The values are unchanged.
+bool fast_low_rank_basis(Model* m, std::string* error);
+
 }  // namespace dcurve

@@ -5,6 +5,7 @@
 
 #include "codec/common/error.h"
 #include "codec/common/fast_residual.h"
+#include "codec/common/fast_traversal.h"
 #include "codec/common/residual.h"
 #include "codec/compress/fast_residual_encoder.h"
 #include "codec/decompress/model_prediction.h"
@@ -22,6 +23,7 @@ struct FastInputs {
   const ResidualLayer* layer = nullptr;
   const std::vector<std::vector<float>>* frames = nullptr;
   const std::vector<int32_t>* model = nullptr;  // every frame's Model prediction, or null
+  const FastTraversal* traversal = nullptr;
   double radius = 0;
   uint32_t V = 0;
 };
@@ -33,20 +35,23 @@ int vertex_bits(const int64_t* r) {
   return bits == 0 ? 0 : bits + 4;
 }
 
-// Frame values snapped vertex by vertex against `kind`'s prediction (pred: the dense
-// prediction; Spatial: the previous vertex's snapped values) into q; returns estimated bits.
-int64_t snap_frame(const FastInputs& in, const float* x, const std::vector<AxisRun>& runs, FrameKind kind,
-                   const int32_t* pred, int32_t* q) {
+// Frame values snapped vertex by vertex against the kind byte's prediction (base: the dense
+// base prediction; with the spatial flag, vertices in traversal order, each also predicted
+// from the corrections e of the vertices before it) into q; returns estimated bits.
+int64_t snap_frame(const FastInputs& in, const float* x, const std::vector<AxisRun>& runs, uint8_t kind,
+                   const int32_t* base, int32_t* q, int64_t* e) {
+  const bool spatial = has_spatial(kind);
   int64_t bits = 0;
-  for (uint32_t v = 0; v < in.V; ++v) {
-    const size_t i = size_t(v) * 3;
+  for (uint32_t pos = 0; pos < in.V; ++pos) {
+    const size_t i = size_t(spatial ? in.traversal->order[pos] : pos) * 3;
     int64_t p[3];
     for (int a = 0; a < 3; ++a) {
-      p[a] = kind == FrameKind::Spatial ? (v > 0 ? q[i - 3 + size_t(a)] : 0) : pred[i + size_t(a)];
+      p[a] = base[i + size_t(a)] + (spatial ? fast_spatial(*in.traversal, pos, e, a) : 0);
       q[i + size_t(a)] = int32_t(runs[i + size_t(a)].nearest);
     }
     snap_vertex(*in.layer, x + i, &runs[i], in.radius, 0.0, p, q + i);
     const int64_t r[3] = {q[i] - p[0], q[i + 1] - p[1], q[i + 2] - p[2]};
+    for (int a = 0; a < 3; ++a) e[i + size_t(a)] = int64_t(q[i + size_t(a)]) - base[i + size_t(a)];
     bits += vertex_bits(r);
   }
   return bits;
@@ -56,6 +61,7 @@ int64_t snap_frame(const FastInputs& in, const float* x, const std::vector<AxisR
 void plan_chunk(const FastInputs& in, ChunkSpan span, uint8_t* kinds, int32_t* q) {
   const size_t n = size_t(in.V) * 3;
   std::vector<int32_t> pred(n), trial(n);
+  std::vector<int64_t> corrections(n);
   for (uint32_t k = 0; k < span.count; ++k) {
     const uint32_t f = span.first + k;
     const float* x = (*in.frames)[f].data();
@@ -63,15 +69,17 @@ void plan_chunk(const FastInputs& in, ChunkSpan span, uint8_t* kinds, int32_t* q
     const int32_t* M = in.model ? in.model->data() + n * f : nullptr;
     int32_t* out = q + n * k;
     int64_t best = INT64_MAX;
-    for (uint8_t kind = 0; kind < kFrameKindCount; ++kind) {
-      if (!kind_usable(kind, k, M != nullptr)) continue;
-      predict_frame(FrameKind(kind), k >= 1 ? out - n : nullptr, k >= 2 ? out - 2 * n : nullptr, M,
+    for (uint8_t base = 0; base < kFrameKindCount; ++base) {
+      if (!kind_usable(base, k, M != nullptr)) continue;
+      predict_frame(FrameKind(base), k >= 1 ? out - n : nullptr, k >= 2 ? out - 2 * n : nullptr, M,
                     M && k >= 1 ? M - n : nullptr, n, pred.data());
-      const int64_t bits = snap_frame(in, x, runs, FrameKind(kind), pred.data(), trial.data());
-      if (bits < best) {
-        best = bits;
-        kinds[k] = kind;
-        std::copy(trial.begin(), trial.end(), out);
+      for (uint8_t kind : {base, uint8_t(base | kSpatialFlag)}) {
+        const int64_t bits = snap_frame(in, x, runs, kind, pred.data(), trial.data(), corrections.data());
+        if (bits < best) {
+          best = bits;
+          kinds[k] = kind;
+          std::copy(trial.begin(), trial.end(), out);
+        }
       }
     }
   }
@@ -110,6 +118,8 @@ bool encode_fast_layer(Model* m, const std::vector<std::vector<float>>& frames, 
   in.model = model.empty() ? nullptr : &model;
   in.radius = options.snap_distance;
   in.V = m->meta.vertex_count;
+  const FastTraversal traversal = fast_traversal(m->faces, in.V);
+  in.traversal = &traversal;
   const std::vector<uint32_t> lengths =
       options.chunk_frames ? std::vector<uint32_t>{std::min(options.chunk_frames, m->meta.frame_count)}
                            : fast_chunk_candidates(m->meta.frame_count);

@@ -8,6 +8,9 @@
 
 #include "codec/common/low_rank.h"
 #include "codec/common/residual.h"
+#include "codec/common/fast_residual.h"
+#include "codec/common/fast_traversal.h"
+#include "codec/compress/fast_residual_encoder.h"
 #include "codec/compress/residual_encoder.h"
 #include "encoder/parallel.h"
 
@@ -160,6 +163,38 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t
   return encode_residuals(pseudo, values, &plan, options);
 }
 
+// The fast payload's coding of the K + 1 pseudo-frames (format 4): each from itself alone
+// through the fast traversal (kind None with the spatial flag), every basis value snapped
+// within kBasisSnap of its amplitude towards what the traversal predicts from the values
+// chosen before it.
+std::vector<uint8_t> code_mean_and_basis_fast(const Model& model, std::vector<int32_t>* values_io,
+                                              const std::vector<double>& exact, uint32_t frames) {
+  std::vector<int32_t>& values = *values_io;
+  const size_t n = size_t(model.meta.vertex_count) * 3;
+  const FastTraversal t = fast_traversal(model.faces, model.meta.vertex_count);
+  std::vector<int64_t> e(n);
+  const double limit = double(kMaxLowRankBasis);
+  for (uint32_t k = 1; k < frames; ++k) {
+    int32_t* plane = values.data() + k * n;
+    const double* x = exact.data() + (k - 1) * n;
+    for (size_t pos = 0; pos < t.order.size(); ++pos) {
+      const size_t v = size_t(t.order[pos]) * 3;
+      for (int a = 0; a < 3; ++a) {
+        const size_t i = v + size_t(a);
+        const double lo = std::max(std::ceil(x[i] - kBasisSnap), -limit), hi = std::min(std::floor(x[i] + kBasisSnap), limit);
+        plane[i] = int32_t(std::clamp(double(fast_spatial(t, pos, e.data(), a)), lo, std::max(lo, hi)));
+        e[i] = plane[i];
+      }
+    }
+  }
+  Model pseudo;
+  pseudo.meta = model.meta;
+  pseudo.meta.frame_count = frames;
+  pseudo.faces = model.faces;
+  const std::vector<uint8_t> kinds(frames, fast_residual::kSpatialFlag);
+  return encode_fast_residuals(pseudo, values, kinds, frames, nullptr);
+}
+
 // Least-squares coefficients of every frame of q against the quantized mean and basis
 // (values: mean, then K basis vectors), in the model's units (prediction * 2^S). The PCA
 // weights fit the unrounded basis; on a coarse basis step its rounding is a large part of
@@ -210,7 +245,7 @@ size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads
 
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
                        Model* model, const std::vector<int32_t>* q, BasisMemo* memo,
-                       const Traversal* traversal, std::vector<int32_t>* mean_and_basis) {
+                       const Traversal* traversal, std::vector<int32_t>* mean_and_basis, BasisCoding coding) {
   const uint32_t F = model->meta.frame_count;
   const size_t n = pca.mean.size();
   if (K == 0 || K > pca.weights.size() || K > kMaxLowRankComponents || !(basis_step > 0)) return false;
@@ -251,7 +286,9 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
       entry->mean_shift = mean_shift;
     }
   }
-  lr.basis_payload = code_mean_and_basis(*model, &values, exact, K + 1, threads, entry, traversal);
+  lr.basis_payload = coding == BasisCoding::Fast
+                         ? code_mean_and_basis_fast(*model, &values, exact, K + 1)
+                         : code_mean_and_basis(*model, &values, exact, K + 1, threads, entry, traversal);
   if (lr.basis_payload.empty()) return false;
   std::vector<double> weights(size_t(F) * K);
   for (uint32_t f = 0; f < F; ++f)

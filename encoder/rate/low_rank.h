@@ -70,8 +70,12 @@ struct BasisMemo {
 // has it already). mean_and_basis (may be null) receives the values coded, mean then the K
 // basis vectors, n each: what a decoder decodes from the basis payload, for low_rank_frame.
 // False when a value would leave the format's ranges.
+// coding: the residual coder of format 3 (Range), or the fast payload of format 4 (Fast: each
+// pseudo-frame through the fast traversal, values snapped for it; memo and traversal unused).
+enum class BasisCoding { Range, Fast };
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
                        Model* model, const std::vector<int32_t>* q = nullptr, BasisMemo* memo = nullptr,
-                       const Traversal* traversal = nullptr, std::vector<int32_t>* mean_and_basis = nullptr);
+                       const Traversal* traversal = nullptr, std::vector<int32_t>* mean_and_basis = nullptr,
+                       BasisCoding coding = BasisCoding::Range);
 
 }  // namespace dcurve
