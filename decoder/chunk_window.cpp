@@ -103,21 +103,30 @@ const int32_t* ChunkWindow::model_values(uint32_t f) {
   return s.values.data();
 }
 
-// Decodes the next frame of the open chunk into the ring slot of the oldest frame it does not read.
+// The ring slot frame f is decoded into: its own if the ring holds it (so no frame is held
+// twice, and at most two slots, f - 1 and f - 2, are kept), else an empty one, else the
+// lowest frame.
+ChunkWindow::FrameSlot* ChunkWindow::fast_target(uint32_t f) {
+  FrameSlot* target = nullptr;
+  for (FrameSlot& s : ring_) {
+    if (s.frame == f) return &s;
+    const uint32_t back = s.frame < f ? f - s.frame : 0;  // 1, 2: kept, also across a chunk boundary
+    if (back == 1 || back == 2) continue;
+    if (!target || s.frame == UINT32_MAX || (target->frame != UINT32_MAX && s.frame < target->frame)) target = &s;
+  }
+  return target;
+}
+
+// Decodes the next frame of the open chunk into the ring.
 bool ChunkWindow::decode_fast_frame(Error* error) {
   const uint32_t k = fast_.next(), f = fast_chunk_ * shared_.index.chunk_frames + k;
   const int32_t* q[3] = {nullptr, nullptr, nullptr};  // frames f - 1, f - 2
-  FrameSlot* target = nullptr;
-  for (FrameSlot& s : ring_) {
-    const uint32_t back = s.frame < f ? f - s.frame : 0;  // 1, 2: kept, also across a chunk boundary
-    if (back == 1 || back == 2) {
-      if (k >= back) q[back] = s.values.data();
-    } else if (!target || s.frame == UINT32_MAX || (target->frame != UINT32_MAX && s.frame < target->frame)) {
-      target = &s;
-    }
-  }
+  for (FrameSlot& s : ring_)
+    if (s.frame < f && f - s.frame <= 2 && k >= f - s.frame) q[f - s.frame] = s.values.data();
+  FrameSlot* target = fast_target(f);
   const fast_residual::FrameKind kind = fast_.kind(k);
-  if ((fast_residual::frames_needed(kind) >= 1 && !q[1]) || (fast_residual::frames_needed(kind) >= 2 && !q[2])) {
+  if (!target || (fast_residual::frames_needed(kind) >= 1 && !q[1]) ||
+      (fast_residual::frames_needed(kind) >= 2 && !q[2])) {
     fast_chunk_ = UINT32_MAX;  // cannot happen when frames go in order; reopen rather than read a null frame
     if (error) *error = {Status::Internal, "frame " + std::to_string(f) + " lacks the frames before it"};
     return false;

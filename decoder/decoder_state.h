@@ -55,6 +55,8 @@ class ChunkWindow {
   const int32_t* fast_frame_values(uint32_t f, Error* error);
   bool open_fast_chunk(uint32_t c, Error* error);
   bool decode_fast_frame(Error* error);
+  struct FrameSlot;
+  FrameSlot* fast_target(uint32_t f);
   const int32_t* model_values(uint32_t f);
   // Frame f's correction in the segment of `place`, kept in a stencil slot: the frames of one
   // cubic in-between stay valid together, and the in-betweens around f reuse it. Reuses a

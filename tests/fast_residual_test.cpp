@@ -236,6 +236,14 @@ TEST(FastResidual, AnyFrameInAnyOrderDecodesAsSequentialPlayback) {
     ASSERT_TRUE(jumps->evaluate_frame(f, x.data()));
     EXPECT_EQ(x, frames[f]) << f;
   }
+  // Random jumps, back and forth inside and across chunks (the fuzzer found a ring that held
+  // one frame twice and then had no slot to decode into).
+  std::mt19937 rng(5);
+  for (int j = 0; j < 400; ++j) {
+    const uint32_t f = rng() % uint32_t(frames.size());
+    ASSERT_TRUE(jumps->evaluate_frame(f, x.data())) << f;
+    EXPECT_EQ(x, frames[f]) << f;
+  }
   // In-betweens across every chunk boundary: frames i and i + 1 from two chunks.
   auto cursor = jumps->make_cursor();
   std::vector<float> y(n);
