@@ -157,7 +157,7 @@ std::vector<Vector> recipes() {
   // second on the chunked recipe, whose PDE segments give kinds 3 and 4 their Model prediction.
   Model fast_frames = small_model(7);
   fast_frames.residual.payload =
-      encode_fast_residuals(fast_frames, testing::grid(6, 7), {0x10, 1, 0x12, 2, 0x10, 0x11, 2}, 4, nullptr);
+      encode_fast_residuals(fast_frames, testing::grid(6, 7), {0x10, 1, 0x32, 2, 0x30, 0x11, 2}, 4, nullptr);
   v.push_back({"fast_frames", fast_frames, {}});
   Model fast_model = chunked;
   std::vector<int32_t> prediction;

@@ -30,7 +30,7 @@ using test::refused_or_decodes_as;
 
 constexpr uint32_t kV = 90, kFrames = 6;
 constexpr size_t kN = size_t(kV) * 3;
-constexpr uint8_t kS = fast_residual::kSpatialFlag;
+constexpr uint8_t kS = fast_residual::kSpatialFlag, kM = fast_residual::kSmoothFlag | kS;
 
 // A 9 x 10 grid's traversal, or (faces false) the vertex-id chain of a file without faces.
 FastTraversal traversal(bool faces = true) {
@@ -70,7 +70,8 @@ TEST(FastResidual, EveryKindRoundTripsExactly) {
                                                    {kS, 1, 2, 2, 2 | kS, 2},
                                                    {3, 3, 3 | kS, 3, 3, 3},
                                                    {3, 4, 4, 4 | kS, 4, 4},
-                                                   {3 | kS, 1, 2, 4 | kS, 0, 3}};
+                                                   {3 | kS, 1, 2, 4 | kS, 0, 3},
+                                                   {kM, 1 | kM, 2 | kM, 2 | kS, kM, 0}};
   for (bool faces : {true, false}) {
     const FastTraversal t = traversal(faces);
     for (const std::vector<uint8_t>& kinds : plans) {
@@ -110,7 +111,8 @@ TEST(FastResidual, AKindThatReadsWhatTheChunkLacksIsNotWritten) {
   EXPECT_TRUE(chunk_of(c, {1, 1, 1, 1, 1, 1}, false).empty());  // frame 0 has no frame before it
   EXPECT_TRUE(chunk_of(c, {0, 2, 2, 2, 2, 2}, false).empty());  // frame 1 has one, not two
   EXPECT_TRUE(chunk_of(c, {3, 3, 3, 3, 3, 3}, false).empty());  // no Model prediction
-  EXPECT_TRUE(chunk_of(c, {0x20, 0, 0, 0, 0, 0}, false).empty());  // an unknown flag
+  EXPECT_TRUE(chunk_of(c, {0x40, 0, 0, 0, 0, 0}, false).empty());  // an unknown flag
+  EXPECT_TRUE(chunk_of(c, {0x20, 0, 0, 0, 0, 0}, false).empty());  // smooth without spatial
 }
 
 // Decoding `bytes` fails with an error (and never reads outside them: ASan in CI).
@@ -131,8 +133,10 @@ TEST(FastResidual, DamagedChunksAreRejected) {
   std::vector<uint8_t> bad = good;
   bad[0] = fast_residual::kFrameKindCount;  // a kind out of range
   expect_rejected(bad, c, "kind out of range");
-  bad[0] = 0x23;  // an unknown flag
+  bad[0] = 0x43;  // an unknown flag
   expect_rejected(bad, c, "unknown flag");
+  bad[0] = 0x23;  // the smooth flag without the spatial flag
+  expect_rejected(bad, c, "smooth without spatial");
   bad = good;
   bad[0] = 1;  // frame 0 with a kind that reads the frame before
   expect_rejected(bad, c, "kind not usable");

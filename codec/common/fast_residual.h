@@ -26,8 +26,11 @@ enum class FrameKind : uint8_t {
 };
 constexpr uint8_t kFrameKindCount = 5;
 constexpr uint8_t kSpatialFlag = 0x10;
+// With the spatial flag: Mean in place of Parallelogram (codec/common/fast_traversal.h).
+constexpr uint8_t kSmoothFlag = 0x20;
 inline FrameKind base_kind(uint8_t kind) { return FrameKind(kind & 0x0f); }
 inline bool has_spatial(uint8_t kind) { return (kind & kSpatialFlag) != 0; }
+inline bool is_smooth(uint8_t kind) { return (kind & kSmoothFlag) != 0; }
 
 // Frames of the chunk decoded before local frame k that `kind` reads.
 inline uint32_t frames_needed(FrameKind kind) {
@@ -44,8 +47,8 @@ inline bool uses_model(FrameKind kind) { return kind == FrameKind::Model || kind
 // Model prediction).
 inline bool kind_usable(uint8_t kind, uint32_t k, bool has_model) {
   const FrameKind base = base_kind(kind);
-  return (kind & ~(kSpatialFlag | 0x0f)) == 0 && uint8_t(base) < kFrameKindCount && k >= frames_needed(base) &&
-         (has_model || !uses_model(base));
+  return (kind & ~(kSmoothFlag | kSpatialFlag | 0x0f)) == 0 && (!is_smooth(kind) || has_spatial(kind)) &&
+         uint8_t(base) < kFrameKindCount && k >= frames_needed(base) && (has_model || !uses_model(base));
 }
 
 // Op bytes: m = b & 7, s = b >> 3. m != 0: skip s vertices, then a vertex whose axes a with

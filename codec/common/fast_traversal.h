@@ -23,10 +23,12 @@ struct FastTraversal {
 FastTraversal fast_traversal(const std::vector<uint32_t>& faces, uint32_t V);
 
 // The spatial prediction of the vertex at position i from the values e (vertex-major, 3 per
-// vertex) of the vertices before it, axis a.
-inline int64_t fast_spatial(const FastTraversal& t, size_t i, const int64_t* e, int a) {
+// vertex) of the vertices before it, axis a. smooth: Mean where the type is Parallelogram
+// (a noisy field, e.g. rounding left by a model, is predicted better by an average).
+inline int64_t fast_spatial(const FastTraversal& t, size_t i, const int64_t* e, int a, bool smooth = false) {
   const uint32_t* r = &t.refs[i * 3];
-  switch (FastSpatial(t.type[i])) {
+  const FastSpatial type = FastSpatial(t.type[i]);
+  switch (smooth && type == FastSpatial::Parallelogram ? FastSpatial::Mean : type) {
     case FastSpatial::Copy: return e[size_t(r[0]) * 3 + size_t(a)];
     case FastSpatial::Mean: return (e[size_t(r[0]) * 3 + size_t(a)] + e[size_t(r[1]) * 3 + size_t(a)] + 1) >> 1;
     case FastSpatial::Parallelogram:

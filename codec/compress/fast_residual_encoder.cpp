@@ -24,7 +24,8 @@ void fast_frame_residuals(uint8_t kind, const FastTraversal& t, const int32_t* q
   std::vector<int64_t> e(n);
   for (size_t i = 0; i < n; ++i) e[i] = int64_t(q[i]) - scratch[i];
   for (size_t i = 0; i < n / 3; ++i)
-    for (int a = 0; a < 3; ++a) r[i * 3 + size_t(a)] = e[size_t(t.order[i]) * 3 + size_t(a)] - fast_spatial(t, i, e.data(), a);
+    for (int a = 0; a < 3; ++a)
+      r[i * 3 + size_t(a)] = e[size_t(t.order[i]) * 3 + size_t(a)] - fast_spatial(t, i, e.data(), a, is_smooth(kind));
 }
 
 namespace {

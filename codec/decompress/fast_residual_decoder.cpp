@@ -144,7 +144,7 @@ bool FastChunkDecoder::add_residuals(int32_t* out) {
 
 // Spatial frames: residuals by traversal position, each then added to what the traversal
 // predicts from the vertices before it; the sum is the correction of the base prediction.
-bool FastChunkDecoder::add_spatial_residuals(int32_t* out) {
+bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth) {
   const FastTraversal& t = *traversal_;
   spatial_.assign(size_t(V_) * 3, 0);
   int64_t* e = spatial_.data();
@@ -157,7 +157,7 @@ bool FastChunkDecoder::add_spatial_residuals(int32_t* out) {
   for (size_t i = 0; i < V_; ++i) {
     const size_t v = size_t(t.order[i]) * 3;
     for (int a = 0; a < 3; ++a) {
-      e[v + size_t(a)] += fast_spatial(t, i, e, a);
+      e[v + size_t(a)] += fast_spatial(t, i, e, a, smooth);
       const int64_t q = int64_t(out[v + size_t(a)]) + e[v + size_t(a)];
       if (!in_int32(q)) return false;  // also keeps every e within 2^33, so the sums stay small
       out[v + size_t(a)] = int32_t(q);
@@ -174,7 +174,7 @@ bool FastChunkDecoder::decode_frame(const int32_t* q1, const int32_t* q2, const 
   const bool spatial = has_spatial(kinds_[next_]);
   if (spatial && (!traversal_ || traversal_->order.size() != V_))
     return fail(error, "fast residual frame needs the vertex traversal, which was not supplied");
-  if (!(spatial ? add_spatial_residuals(out) : add_residuals(out)))
+  if (!(spatial ? add_spatial_residuals(out, is_smooth(kinds_[next_])) : add_residuals(out)))
     return fail(error, "fast residual frame " + std::to_string(next_) + " is corrupted or decodes out of range");
   if (kVerifyChecksums && residual_walk::values_checksum(out, n) != checksums_[next_])
     return fail(error, "fast residual frame " + std::to_string(next_) +

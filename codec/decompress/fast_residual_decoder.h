@@ -34,7 +34,7 @@ class FastChunkDecoder {
 
  private:
   bool add_residuals(int32_t* out);
-  bool add_spatial_residuals(int32_t* out);
+  bool add_spatial_residuals(int32_t* out, bool smooth);
 
   const FastTraversal* traversal_ = nullptr;
   std::vector<int64_t> spatial_;  // per vertex and axis: residuals, then what the traversal predicts

@@ -46,7 +46,7 @@ int64_t snap_frame(const FastInputs& in, const float* x, const std::vector<AxisR
     const size_t i = size_t(spatial ? in.traversal->order[pos] : pos) * 3;
     int64_t p[3];
     for (int a = 0; a < 3; ++a) {
-      p[a] = base[i + size_t(a)] + (spatial ? fast_spatial(*in.traversal, pos, e, a) : 0);
+      p[a] = base[i + size_t(a)] + (spatial ? fast_spatial(*in.traversal, pos, e, a, is_smooth(kind)) : 0);
       q[i + size_t(a)] = int32_t(runs[i + size_t(a)].nearest);
     }
     snap_vertex(*in.layer, x + i, &runs[i], in.radius, 0.0, p, q + i);
@@ -73,7 +73,7 @@ void plan_chunk(const FastInputs& in, ChunkSpan span, uint8_t* kinds, int32_t* q
       if (!kind_usable(base, k, M != nullptr)) continue;
       predict_frame(FrameKind(base), k >= 1 ? out - n : nullptr, k >= 2 ? out - 2 * n : nullptr, M,
                     M && k >= 1 ? M - n : nullptr, n, pred.data());
-      for (uint8_t kind : {base, uint8_t(base | kSpatialFlag)}) {
+      for (uint8_t kind : {base, uint8_t(base | kSpatialFlag), uint8_t(base | kSpatialFlag | kSmoothFlag)}) {
         const int64_t bits = snap_frame(in, x, runs, kind, pred.data(), trial.data(), corrections.data());
         if (bits < best) {
           best = bits;

@@ -163,27 +163,47 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t
   return encode_residuals(pseudo, values, &plan, options);
 }
 
+// One basis vector's values (plane, V * 3) chosen from its exact amplitudes x (basis steps)
+// for the fast payload: each within kBasisSnap of its amplitude, nearest what the fast
+// traversal predicts (smooth: the kind's smooth flag) from the values chosen before it.
+void snap_plane_fast(const FastTraversal& t, const double* x, bool smooth, int32_t* plane) {
+  std::vector<int64_t> e(t.order.size() * 3);
+  const double limit = double(kMaxLowRankBasis);
+  for (size_t pos = 0; pos < t.order.size(); ++pos) {
+    const size_t v = size_t(t.order[pos]) * 3;
+    for (int a = 0; a < 3; ++a) {
+      const size_t i = v + size_t(a);
+      const double lo = std::max(std::ceil(x[i] - kBasisSnap), -limit), hi = std::min(std::floor(x[i] + kBasisSnap), limit);
+      plane[i] = int32_t(std::clamp(double(fast_spatial(t, pos, e.data(), a, smooth)), lo, std::max(lo, hi)));
+      e[i] = plane[i];
+    }
+  }
+}
+
 // The fast payload's coding of the K + 1 pseudo-frames (format 4): each from itself alone
-// through the fast traversal (kind None with the spatial flag), every basis value snapped
-// within kBasisSnap of its amplitude towards what the traversal predicts from the values
-// chosen before it.
+// through the fast traversal (kind None with the spatial flag, and the smooth flag where that
+// codes the plane smaller), the basis values snapped for the kind (snap_plane_fast).
 std::vector<uint8_t> code_mean_and_basis_fast(const Model& model, std::vector<int32_t>* values_io,
                                               const std::vector<double>& exact, uint32_t frames) {
+  using fast_residual::kSmoothFlag;
+  using fast_residual::kSpatialFlag;
   std::vector<int32_t>& values = *values_io;
-  const size_t n = size_t(model.meta.vertex_count) * 3;
-  const FastTraversal t = fast_traversal(model.faces, model.meta.vertex_count);
-  std::vector<int64_t> e(n);
-  const double limit = double(kMaxLowRankBasis);
-  for (uint32_t k = 1; k < frames; ++k) {
+  const uint32_t V = model.meta.vertex_count;
+  const size_t n = size_t(V) * 3;
+  const FastTraversal t = fast_traversal(model.faces, V);
+  std::vector<uint8_t> kinds(frames, kSpatialFlag);
+  std::vector<int32_t> trial(n);
+  for (uint32_t k = 0; k < frames; ++k) {
     int32_t* plane = values.data() + k * n;
-    const double* x = exact.data() + (k - 1) * n;
-    for (size_t pos = 0; pos < t.order.size(); ++pos) {
-      const size_t v = size_t(t.order[pos]) * 3;
-      for (int a = 0; a < 3; ++a) {
-        const size_t i = v + size_t(a);
-        const double lo = std::max(std::ceil(x[i] - kBasisSnap), -limit), hi = std::min(std::floor(x[i] + kBasisSnap), limit);
-        plane[i] = int32_t(std::clamp(double(fast_spatial(t, pos, e.data(), a)), lo, std::max(lo, hi)));
-        e[i] = plane[i];
+    size_t best = SIZE_MAX;
+    for (const uint8_t kind : {kSpatialFlag, uint8_t(kSpatialFlag | kSmoothFlag)}) {
+      std::copy(plane, plane + n, trial.begin());
+      if (k > 0) snap_plane_fast(t, exact.data() + (k - 1) * n, (kind & kSmoothFlag) != 0, trial.data());
+      const size_t bytes = encode_fast_chunk(t, V, &kind, 1, trial.data(), nullptr).size();
+      if (bytes < best) {
+        best = bytes;
+        kinds[k] = kind;
+        std::copy(trial.begin(), trial.end(), plane);  // the mean keeps its values
       }
     }
   }
@@ -191,7 +211,6 @@ std::vector<uint8_t> code_mean_and_basis_fast(const Model& model, std::vector<in
   pseudo.meta = model.meta;
   pseudo.meta.frame_count = frames;
   pseudo.faces = model.faces;
-  const std::vector<uint8_t> kinds(frames, fast_residual::kSpatialFlag);
   return encode_fast_residuals(pseudo, values, kinds, frames, nullptr);
 }
 
