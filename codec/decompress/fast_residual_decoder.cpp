@@ -103,66 +103,72 @@ bool FastChunkDecoder::open(const uint8_t* bytes, size_t size, uint32_t V, uint3
 }
 
 namespace {
-// Walks one frame's op bytes ops[*pos, end), calling at(slot, axis, r) for each non-zero
-// residual, slot being the cursor (a vertex id, or a traversal position); false when an op
-// passes the last slot or a value is malformed.
-template <class At>
-bool walk_ops(const std::vector<uint8_t>& ops, size_t* pos, size_t end, const std::vector<uint8_t>& values,
-              size_t* value_pos, uint32_t V, At at) {
-  uint32_t cursor = 0;
-  for (; *pos < end; ++*pos) {
-    const uint8_t b = ops[*pos];
-    const uint32_t m = b & 7, s = b >> 3;
-    if (m == 0) {
-      cursor += kLongSkip * (s + 1);
+// One frame's op bytes, read one slot with non-zero residuals at a time: a slot is a vertex
+// id, or with the spatial flag a traversal position.
+struct OpCursor {
+  const std::vector<uint8_t>& ops;
+  size_t pos, end;
+  uint32_t V;
+  uint32_t cursor = 0, slot = 0;
+  uint8_t mask = 0;
+  // The next such slot and its axis mask; slot = V after the frame's last op. False on an op
+  // that passes the last slot.
+  bool next() {
+    while (pos < end) {
+      const uint8_t b = ops[pos++];
+      const uint32_t m = b & 7, s = b >> 3;
+      cursor += m == 0 ? kLongSkip * (s + 1) : s;
       if (cursor >= V) return false;
-      continue;
+      if (m == 0) continue;
+      slot = cursor++;
+      mask = uint8_t(m);
+      return true;
     }
-    cursor += s;
-    if (cursor >= V) return false;
-    for (int a = 0; a < 3; ++a) {
-      if (!(m >> a & 1)) continue;
-      int64_t r = 0;
-      if (!read_value(values, value_pos, &r) || !at(cursor, a, r)) return false;
-    }
-    ++cursor;
+    slot = V;
+    mask = 0;
+    return true;
   }
-  return true;
-}
+};
 }  // namespace
 
 // The frame's residuals added to its base prediction in out, in vertex-id order.
 bool FastChunkDecoder::add_residuals(int32_t* out) {
-  return walk_ops(ops_, &op_pos_, op_pos_ + op_counts_[next_], values_, &value_pos_, V_,
-                  [out](uint32_t v, int a, int64_t r) {
-                    int32_t& x = out[size_t(v) * 3 + size_t(a)];
-                    const int64_t sum = int64_t(x) + r;
-                    x = int32_t(sum);
-                    return in_int32(sum);
-                  });
+  OpCursor c{ops_, op_pos_, op_pos_ + op_counts_[next_], V_};
+  while (c.next() && c.slot < V_) {
+    for (int a = 0; a < 3; ++a) {
+      if (!(c.mask >> a & 1)) continue;
+      int64_t r = 0;
+      int32_t& x = out[size_t(c.slot) * 3 + size_t(a)];
+      if (!read_value(values_, &value_pos_, &r) || !in_int32(int64_t(x) + r)) return false;
+      x = int32_t(int64_t(x) + r);
+    }
+  }
+  op_pos_ = c.pos;
+  return c.slot == V_;
 }
 
-// Spatial frames: residuals by traversal position, each then added to what the traversal
-// predicts from the vertices before it; the sum is the correction of the base prediction.
+// Spatial frames: in traversal order, each position's residual (zero unless the ops name it)
+// plus what the traversal predicts from the positions before it is the correction of the
+// base prediction. One pass, no buffer to clear.
 bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth) {
   const FastTraversal& t = *traversal_;
-  spatial_.assign(size_t(V_) * 3, 0);
+  spatial_.resize(size_t(V_) * 3);
   int64_t* e = spatial_.data();
-  const bool ok = walk_ops(ops_, &op_pos_, op_pos_ + op_counts_[next_], values_, &value_pos_, V_,
-                           [&t, e](uint32_t i, int a, int64_t r) {
-                             e[size_t(t.order[i]) * 3 + size_t(a)] = r;
-                             return true;
-                           });
-  if (!ok) return false;
-  for (size_t i = 0; i < V_; ++i) {
+  OpCursor c{ops_, op_pos_, op_pos_ + op_counts_[next_], V_};
+  if (!c.next()) return false;
+  for (uint32_t i = 0; i < V_; ++i) {
     const size_t v = size_t(t.order[i]) * 3;
     for (int a = 0; a < 3; ++a) {
-      e[v + size_t(a)] += fast_spatial(t, i, e, a, smooth);
+      int64_t r = 0;
+      if (i == c.slot && (c.mask >> a & 1) && !read_value(values_, &value_pos_, &r)) return false;
+      e[v + size_t(a)] = r + fast_spatial(t, i, e, a, smooth);
       const int64_t q = int64_t(out[v + size_t(a)]) + e[v + size_t(a)];
       if (!in_int32(q)) return false;  // also keeps every e within 2^33, so the sums stay small
       out[v + size_t(a)] = int32_t(q);
     }
+    if (i == c.slot && !c.next()) return false;
   }
+  op_pos_ = c.pos;
   return true;
 }
 
