@@ -54,7 +54,8 @@ bool prepare(SharedState* shared, uint64_t file_bytes, std::string* error) {
     else shared->traversal = build_traversal(m);
   }
   const bool has_traversal = m.residual.step > 0 && !shared->fast();
-  return shared->predictor.build(m, budget, error, has_traversal ? &shared->traversal : nullptr);
+  return shared->predictor.build(m, budget, error, has_traversal ? &shared->traversal : nullptr,
+                                 shared->fast() ? &shared->fast_traversal : nullptr);
 }
 
 }  // namespace

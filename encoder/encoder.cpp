@@ -288,7 +288,10 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   if (!have_plain && !encode_plain(anim, opt, start, &m, &residual_only, error)) return false;
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
-  if (opt.chunk_frames == 0) {
+  // The fast profile replaces this residual layer and picks its own chunks; only a PDE
+  // model's comparison below needs format 3's chosen file.
+  const bool fast_alone = opt.profile == Profile::Fast && opt.model == ModelChoice::None;
+  if (opt.chunk_frames == 0 && !fast_alone) {
     if (!choose_chunk_frames(&m, context_of(anim, opt, start), out, error)) return false;
   } else {
     *out = write_container(m, wo);

@@ -68,8 +68,5 @@ constexpr uint8_t kStreamZstd = 1;
 void predict_frame(FrameKind kind, const int32_t* q1, const int32_t* q2, const int32_t* M, const int32_t* M1,
                    size_t n, int32_t* out);
 
-inline uint64_t zigzag(int64_t v) { return v < 0 ? 2 * uint64_t(-(v + 1)) + 1 : 2 * uint64_t(v); }
-inline int64_t unzigzag(uint64_t z) { return (z & 1) ? -int64_t(z >> 1) - 1 : int64_t(z >> 1); }
-
 }  // namespace fast_residual
 }  // namespace dcurve

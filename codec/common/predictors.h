@@ -97,6 +97,8 @@ class SpatialWeightsSource;
 
 // The Model predictor computed one frame at a time (a decoder that keeps no table of every
 // frame): writes frame f's V * 3 values (walk-local frame id, grid units) into out.
+struct FastTraversal;  // codec/common/fast_traversal.h
+
 class ModelFrameSource {
  public:
   virtual ~ModelFrameSource() = default;
@@ -113,6 +115,9 @@ struct ResidualOptions {
   // build_traversal(model) of the model the call codes, when the caller reuses one across
   // calls (it depends only on V and the faces or curves); null: each call builds its own.
   const Traversal* traversal = nullptr;
+  // fast_traversal of the model's faces for fast payloads (format 4), when the caller has it
+  // already; null: each call derives its own.
+  const FastTraversal* fast_traversal = nullptr;
   // Where walks get their spatial weight tables (null: each walk computes its own). Changes
   // no value, only how often the same table is computed.
   SpatialWeightsSource* weights_source = nullptr;

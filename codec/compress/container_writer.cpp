@@ -7,8 +7,8 @@
 #include <cstring>
 
 #include "codec/common/bytes.h"
-#include "codec/common/fast_residual.h"
 #include "codec/common/crc32.h"
+#include "codec/common/fast_residual.h"
 #include "codec/common/residual.h"
 #include "codec/compress/faces_encoder.h"
 #include "codec/compress/low_rank_writer.h"

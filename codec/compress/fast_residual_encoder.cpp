@@ -29,21 +29,18 @@ void fast_frame_residuals(uint8_t kind, const FastTraversal& t, const int32_t* q
 }
 
 namespace {
-void append_value(int64_t r, std::vector<uint8_t>* values) {
-  const uint64_t z = zigzag(r);
+void append_value(int64_t r, ByteWriter* values) {
+  const uint64_t z = zigzag_encode(r);
   if (z - 1 < kValueEscape) {
-    values->push_back(uint8_t(z - 1));
+    values->u8(uint8_t(z - 1));
     return;
   }
-  values->push_back(kValueEscape);
-  for (uint64_t u = z - 256; ; u >>= 7) {
-    values->push_back(uint8_t(u & 0x7f) | (u >= 0x80 ? 0x80 : 0));
-    if (u < 0x80) break;
-  }
+  values->u8(kValueEscape);
+  values->varint(z - 256);
 }
 }  // namespace
 
-uint32_t append_frame_tokens(const int64_t* r, uint32_t V, std::vector<uint8_t>* ops, std::vector<uint8_t>* values) {
+uint32_t append_frame_tokens(const int64_t* r, uint32_t V, ByteWriter* ops, ByteWriter* values) {
   uint32_t count = 0, cursor = 0;
   for (uint32_t v = 0; v < V; ++v) {
     const int64_t* x = r + size_t(v) * 3;
@@ -52,11 +49,11 @@ uint32_t append_frame_tokens(const int64_t* r, uint32_t V, std::vector<uint8_t>*
     uint32_t gap = v - cursor;
     while (gap > kMaxShortSkip) {
       const uint32_t s = std::min<uint32_t>(gap / kLongSkip, kMaxShortSkip + 1) - 1;
-      ops->push_back(uint8_t(s << 3));
+      ops->u8(uint8_t(s << 3));
       gap -= kLongSkip * (s + 1);
       ++count;
     }
-    ops->push_back(uint8_t(gap << 3 | mask));
+    ops->u8(uint8_t(gap << 3 | mask));
     ++count;
     for (int a = 0; a < 3; ++a)
       if (x[a] != 0) append_value(x[a], values);
@@ -88,7 +85,7 @@ std::vector<uint8_t> encode_fast_chunk(const FastTraversal& t, uint32_t V, const
   const size_t n = size_t(V) * 3;
   std::vector<int64_t> r(n);
   std::vector<int32_t> scratch(n);
-  std::vector<uint8_t> ops, values;
+  ByteWriter ops, values;
   std::vector<uint32_t> op_counts, checksums;
   for (uint32_t k = 0; k < frames; ++k) {
     if (!kind_usable(kinds[k], k, model != nullptr)) return {};
@@ -103,8 +100,8 @@ std::vector<uint8_t> encode_fast_chunk(const FastTraversal& t, uint32_t V, const
   w.bytes(kinds, frames);
   for (uint32_t c : op_counts) w.varint(c);
   for (uint32_t c : checksums) w.u32(c);
-  write_stream(ops, &w);
-  write_stream(values, &w);
+  write_stream(ops.data(), &w);
+  write_stream(values.data(), &w);
   return std::move(w.data());
 }
 

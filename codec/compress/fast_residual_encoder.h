@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "codec/common/bytes.h"
 #include "codec/common/fast_residual.h"
 #include "codec/common/fast_traversal.h"
 #include "codec/common/model.h"
@@ -21,7 +22,7 @@ void fast_frame_residuals(uint8_t kind, const FastTraversal& t, const int32_t* q
 
 // Appends one frame's residuals (V * 3, in the order they are coded) as op and value bytes;
 // returns the op count.
-uint32_t append_frame_tokens(const int64_t* r, uint32_t V, std::vector<uint8_t>* ops, std::vector<uint8_t>* values);
+uint32_t append_frame_tokens(const int64_t* r, uint32_t V, ByteWriter* ops, ByteWriter* values);
 
 // One chunk's bytes: `frames` frames of grid values q (frame-major) coded with kinds[k]
 // (kind_usable for each), model the chunk's Model prediction (frames * V * 3) or null, t

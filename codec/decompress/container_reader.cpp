@@ -8,8 +8,8 @@
 
 #include "codec/common/basis.h"
 #include "codec/common/bytes.h"
-#include "codec/common/fast_residual.h"
 #include "codec/common/crc32.h"
+#include "codec/common/fast_residual.h"
 #include "codec/common/error.h"
 #include "codec/common/residual.h"
 #include "codec/common/validate.h"

@@ -52,7 +52,7 @@ bool read_value(const std::vector<uint8_t>& values, size_t* pos, int64_t* r) {
   if (*pos >= values.size()) return false;
   const uint8_t c = values[(*pos)++];
   if (c != kValueEscape) {
-    *r = unzigzag(uint64_t(c) + 1);
+    *r = zigzag_decode(uint64_t(c) + 1);
     return true;
   }
   uint64_t u = 0;
@@ -62,7 +62,7 @@ bool read_value(const std::vector<uint8_t>& values, size_t* pos, int64_t* r) {
     u |= uint64_t(b & 0x7f) << shift;
     if (!(b & 0x80)) break;
   }
-  *r = unzigzag(u + 256);
+  *r = zigzag_decode(u + 256);
   return true;
 }
 

@@ -12,7 +12,7 @@ namespace {
 
 // The mean and basis vectors are K + 1 pseudo-frames of the same mesh, coded by the
 // residual coder (its spatial predictors suit smooth basis shapes).
-bool decode_low_rank_basis(const Model& model, uint64_t max_values, const Traversal* traversal,
+bool decode_low_rank_basis(const Model& model, uint64_t max_values, const ResidualOptions& options,
                            std::vector<int32_t>* out, std::string* error) {
   const LowRankModel& lr = model.low_rank;
   const size_t n = size_t(model.meta.vertex_count) * 3;
@@ -20,8 +20,6 @@ bool decode_low_rank_basis(const Model& model, uint64_t max_values, const Traver
     return fail(error, "low-rank model is implausibly large for the file size");
   const Model pseudo = low_rank_basis_model(model);
   std::string why;
-  ResidualOptions options;
-  options.traversal = traversal;  // the file's: same vertices, faces and curves
   if (!decode_residuals(pseudo, out, &why, options)) return fail(error, "low-rank basis: " + why);
   for (size_t i = n; i < out->size(); ++i)
     if ((*out)[i] < -kMaxLowRankBasis || (*out)[i] > kMaxLowRankBasis)
@@ -50,13 +48,17 @@ bool has_motion_model(const Model& model) {
 
 bool has_model_prediction(const Model& model) { return model.low_rank.components > 0 || has_motion_model(model); }
 
-bool GridPredictor::build(const Model& model, uint64_t max_values, std::string* error, const Traversal* traversal) {
+bool GridPredictor::build(const Model& model, uint64_t max_values, std::string* error, const Traversal* traversal,
+                          const FastTraversal* fast_traversal) {
   model_ = &model;
   active_ = has_model_prediction(model);
   if (!evaluator_.build(model, max_values, error)) return false;
   if (model.low_rank.components == 0) return true;
   std::vector<int32_t> mean_and_basis;
-  if (!decode_low_rank_basis(model, max_values, traversal, &mean_and_basis, error)) return false;
+  ResidualOptions options;  // the file's traversals: same vertices, faces and curves
+  options.traversal = traversal;
+  options.fast_traversal = fast_traversal;
+  if (!decode_low_rank_basis(model, max_values, options, &mean_and_basis, error)) return false;
   low_rank_.assign(mean_and_basis, size_t(model.meta.vertex_count) * 3);
   return true;
 }

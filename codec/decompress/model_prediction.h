@@ -41,7 +41,10 @@ class GridPredictor {
   // exceed `max_values` values or the low-rank basis does not decode or is out of range.
   // traversal (may be null: built for the low-rank basis): build_traversal(model), when the
   // caller has it already.
-  bool build(const Model& model, uint64_t max_values, std::string* error, const Traversal* traversal = nullptr);
+  // fast_traversal (may be null): fast_traversal(model.faces, V), for a basis coded as a fast
+  // payload (format 4), when the caller has it.
+  bool build(const Model& model, uint64_t max_values, std::string* error, const Traversal* traversal = nullptr,
+             const FastTraversal* fast_traversal = nullptr);
   bool active() const { return active_; }
   // Frame f's V * 3 values (grid units, clamped to +-2^30) into out.
   void frame(uint32_t f, int32_t* out, PredictionScratch* scratch) const;

@@ -185,7 +185,8 @@ bool decode_all(const Model& model, std::vector<int32_t>* q, ResidualPlan* plan,
   const bool fast = index.version == fast_residual::kPayloadVersion;
   Traversal owned;
   const Traversal& trav = fast ? owned : traversal_for(model, options, &owned);
-  const FastTraversal fast_trav = fast ? fast_traversal(model.faces, V) : FastTraversal();
+  const FastTraversal derived = fast && !options.fast_traversal ? fast_traversal(model.faces, V) : FastTraversal();
+  const FastTraversal& fast_trav = options.fast_traversal ? *options.fast_traversal : derived;
   q->assign(total, 0);
   plan->chunk_frames = index.chunk_frames;
   plan->chunks.assign(index.chunks.size(), PredictorPlan());
