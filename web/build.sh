@@ -51,7 +51,8 @@ for pid in $(jobs -p); do wait "$pid"; done  # fails the script if any compile f
 exported=_malloc,_free,_dcurve_open_memory,_dcurve_close,_dcurve_vertex_count,_dcurve_frame_count,\
 _dcurve_face_count,_dcurve_faces,_dcurve_frame_rate,_dcurve_tolerance,_dcurve_rest_diagonal,\
 _dcurve_chunk_frames,_dcurve_memory_bytes,_dcurve_compute_normals,_dcurve_cursor_create,\
-_dcurve_cursor_destroy,_dcurve_cursor_evaluate,_dcurve_cursor_evaluate_frame,_dcurve_cursor_memory_bytes
+_dcurve_cursor_destroy,_dcurve_cursor_evaluate,_dcurve_cursor_evaluate_frame,_dcurve_cursor_memory_bytes,\
+_dcurve_status_name
 em++ -Os "$out"/obj/*.o -o "$out/dcurve_wasm.mjs" \
   -sMODULARIZE=1 -sEXPORT_ES6=1 -sEXPORT_NAME=createDcurveModule -sENVIRONMENT=web \
   -sFILESYSTEM=0 -sALLOW_MEMORY_GROWTH=1 -sEXPORTED_FUNCTIONS="$exported" \

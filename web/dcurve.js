@@ -1,55 +1,79 @@
 // The dcurve decoder as an ES module: the C API of decoder/dcurve.h over the WebAssembly
 // build (web/build.sh), with errors as DcurveError exceptions carrying the decoder's message.
 //
-//   const dcurve = await loadDcurve();
+//   const dcurve = await loadDcurve();             // or loadDcurve({ wasmUrl: "/lib/dcurve_wasm.wasm" })
 //   const dec = dcurve.open(arrayBuffer);          // throws DcurveError on a malformed file
 //   const xyz = new Float32Array(dec.vertexCount * 3);
 //   dec.evaluate(0.5, xyz);                        // any t in [0, 1]
-//   dec.evaluateFrame(3, xyz);                     // input frame 3 exactly
+//   dec.evaluateFrame(3, xyz, normals);            // input frame 3 exactly, and its normals
 //   dec.close();
 import { decompress } from "fzstd";
 import createDcurveModule from "./build/dcurve_wasm.mjs";
 
 const ERROR_BYTES = 256;
-const STATUS_NAMES = ["ok", "malformed", "invalid argument", "i/o error", "corrupt chunk", "out of memory", "internal error"];
+// The dcurve.h codes the wrapper raises itself; every name comes from dcurve_status_name.
+const INVALID_ARGUMENT = 2; // DCURVE_ERROR_INVALID_ARGUMENT
+const OUT_OF_MEMORY = 5; // DCURVE_ERROR_OUT_OF_MEMORY
+const ABORTED = -1; // no C status: the module failed to load or aborted
+const NO_NORMALS = "the file has no connectivity: no normals";
+
+export const defaultWasmUrl = new URL("./build/dcurve_wasm.wasm", import.meta.url).href;
 
 export class DcurveError extends Error {
-  constructor(message, status) {
-    super(message);
+  // status: the C API's name of `code` (dcurve_status_name), or "aborted" (code -1) when the
+  // wasm module did not load or crashed.
+  constructor(message, status, code, options) {
+    super(message, options);
     this.name = "DcurveError";
-    // DCURVE_ERROR_* as its name; "aborted" when the wasm module itself failed (a crash).
-    this.status = status < 0 ? "aborted" : STATUS_NAMES[status] ?? "internal error";
+    this.status = status;
+    this.code = code;
   }
 }
 
-// Node cannot fetch a file: URL, so the wasm bytes are read and handed over there.
-async function wasmBinaryForNode() {
-  if (typeof process !== "object" || !process.versions?.node) return undefined;
-  const { readFile } = await import("node:fs/promises");
-  return readFile(new URL("./build/dcurve_wasm.wasm", import.meta.url));
+// The NUL-terminated string at `p` in wasm memory.
+function cString(m, p) {
+  return new TextDecoder().decode(m.HEAPU8.subarray(p, m.HEAPU8.indexOf(0, p)));
+}
+
+// A DcurveError for a C status code, named by the C API (never called once the module aborted).
+function statusError(m, code, message) {
+  const status = cString(m, m._dcurve_status_name(code));
+  return new DcurveError(message || status, status, code);
+}
+
+// Where the glue gets the wasm. Node's fetch takes no file: URL (nor a path), so a local wasm
+// is read here and handed over; anywhere else the glue fetches it (compiling as it streams).
+async function wasmSource(wasmUrl) {
+  if (typeof process === "object" && process.versions?.node) {
+    const { pathToFileURL } = await import("node:url");
+    const url = new URL(wasmUrl, pathToFileURL(`${process.cwd()}/`));
+    if (url.protocol === "file:") return { wasmBinary: await (await import("node:fs/promises")).readFile(url) };
+    return { locateFile: () => url.href };
+  }
+  return { locateFile: () => String(wasmUrl) }; // relative: to the page, as fetch resolves it
 }
 
 // Loads and instantiates the WebAssembly module; one module serves any number of decoders.
-export async function loadDcurve() {
-  const module = await createDcurveModule({ zstdDecompress: decompress, wasmBinary: await wasmBinaryForNode() });
-  return { open: (data) => new Decoder(module, data) };
+// wasmUrl: where dcurve_wasm.wasm is served (default: build/ beside this script).
+export async function loadDcurve({ wasmUrl = defaultWasmUrl } = {}) {
+  let module;
+  try {
+    module = await createDcurveModule({ zstdDecompress: decompress, ...(await wasmSource(wasmUrl)) });
+  } catch (e) {
+    throw new DcurveError(`the WebAssembly module did not load from ${wasmUrl}: ${e?.message ?? e}`, "aborted", ABORTED, { cause: e });
+  }
+  return {
+    open: (data) => new Decoder(module, data),
+    statusName: (code) => cString(module, module._dcurve_status_name(code)),
+  };
 }
 
-const INVALID = 2; // DCURVE_ERROR_INVALID_ARGUMENT
-
-// The bytes of a file given as an ArrayBuffer or a typed array / DataView over one.
+// The bytes of a file given as an ArrayBuffer or a typed array / DataView over one; null else.
 function asBytes(data) {
   if (data instanceof Uint8Array) return data;
   if (data instanceof ArrayBuffer) return new Uint8Array(data);
   if (ArrayBuffer.isView(data)) return new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
-  throw new DcurveError("open needs the file's bytes: an ArrayBuffer or a typed array", INVALID);
-}
-
-// A Float32Array of at least n values: anything shorter would read stale wasm memory or
-// throw a RangeError half-way.
-function floats(array, n, what) {
-  if (!(array instanceof Float32Array) || array.length < n)
-    throw new DcurveError(`${what} must be a Float32Array of at least ${n} values (vertexCount * 3)`, INVALID);
+  return null;
 }
 
 // Runs a call into the module; an abort (out of memory: exceptions are not caught in the
@@ -59,7 +83,7 @@ function guarded(call) {
     return call();
   } catch (e) {
     if (e instanceof DcurveError) throw e;
-    throw new DcurveError(`the decoder aborted (${e?.message ?? e}); load a new module`, -1);
+    throw new DcurveError(`the decoder aborted (${e?.message ?? e}); load a new module`, "aborted", ABORTED, { cause: e });
   }
 }
 
@@ -67,7 +91,7 @@ class Decoder {
   #m;
   #decoder = 0;
   #cursor = 0;
-  #xyz = 0; // vertexCount * 3 floats in wasm memory: evaluation output, normals input
+  #xyz = 0; // vertexCount * 3 floats in wasm memory: the last evaluation, the normals' input
   #normals = 0;
   #error = 0;
   #values = 0; // 3 * vertexCount
@@ -75,6 +99,7 @@ class Decoder {
   constructor(module, data) {
     this.#m = module;
     const bytes = asBytes(data);
+    if (!bytes) throw this.#invalid("open needs the file's bytes: an ArrayBuffer or a typed array");
     try {
       guarded(() => this.#open(bytes));
     } catch (e) {
@@ -83,16 +108,21 @@ class Decoder {
     }
   }
 
+  #invalid(message) {
+    return statusError(this.#m, INVALID_ARGUMENT, message);
+  }
+
   // malloc, or a DcurveError when the wasm memory cannot grow (malloc returns 0 then).
   #alloc(bytes) {
     const p = this.#m._malloc(Math.max(bytes, 4));
-    if (!p) throw new DcurveError(`out of memory allocating ${bytes} bytes`, 5);
+    if (!p) throw statusError(this.#m, OUT_OF_MEMORY, `out of memory allocating ${bytes} bytes`);
     return p;
   }
 
   #open(bytes) {
     const m = this.#m;
     this.#error = this.#alloc(ERROR_BYTES + 8);
+    m.HEAPU8[this.#error] = 0; // no stale message from a call that fails without writing one
     const out = this.#error + ERROR_BYTES; // dcurve_decoder** / dcurve_cursor**
     const src = this.#alloc(bytes.length);
     m.HEAPU8.set(bytes, src);
@@ -108,16 +138,34 @@ class Decoder {
   }
 
   #check(status) {
-    if (status === 0) return;
-    const m = this.#m;
-    const end = m.HEAPU8.indexOf(0, this.#error);
-    const message = new TextDecoder().decode(m.HEAPU8.subarray(this.#error, end));
-    throw new DcurveError(message || STATUS_NAMES[status] || "error", status);
+    if (status !== 0) throw statusError(this.#m, status, cString(this.#m, this.#error));
   }
 
   #live() {
-    if (!this.#decoder) throw new DcurveError("the decoder is closed", INVALID);
+    if (!this.#decoder) throw this.#invalid("the decoder is closed");
     return this.#m;
+  }
+
+  // A Float32Array of at least vertexCount * 3 values: anything shorter would read stale wasm
+  // memory or throw a RangeError half-way.
+  #floats(array, what) {
+    if (!(array instanceof Float32Array) || array.length < this.#values)
+      throw this.#invalid(`${what} must be a Float32Array of at least ${this.#values} values (vertexCount * 3)`);
+  }
+
+  // Checked before anything is decoded, so a refused call changes nothing.
+  #checkNormalsOut(out) {
+    this.#floats(out, "the normals output");
+    if (!this.#m._dcurve_faces(this.#decoder)) throw this.#invalid(NO_NORMALS);
+  }
+
+  // The normals of the positions at #xyz (wasm memory) into `out`.
+  #normalsOf(out) {
+    const m = this.#m;
+    const status = guarded(() => m._dcurve_compute_normals(this.#decoder, this.#xyz, this.#normals));
+    if (status !== 0) throw statusError(m, status, NO_NORMALS); // it writes no message
+    out.set(m.HEAPF32.subarray(this.#normals >> 2, (this.#normals >> 2) + this.#values));
+    return out;
   }
 
   get vertexCount() { return this.#live() && this.#values / 3; }
@@ -139,38 +187,37 @@ class Decoder {
     return p ? m.HEAPU32.slice(p >> 2, (p >> 2) + 3 * this.faceCount) : null;
   }
 
-  // Writes vertexCount * 3 positions at t in [0, 1] (clamped) into `out` (a Float32Array).
-  evaluate(t, out) {
-    if (typeof t !== "number" || Number.isNaN(t)) throw new DcurveError(`evaluate needs a time t in [0, 1], not ${String(t)}`, INVALID);
-    return this.#evaluate(out, () => this.#m._dcurve_cursor_evaluate(this.#cursor, t, this.#xyz, this.#error, ERROR_BYTES));
+  // Writes vertexCount * 3 positions at t in [0, 1] (clamped) into `out` (a Float32Array),
+  // and with `normals` their unit vertex normals, from the frame still in wasm memory.
+  evaluate(t, out, normals) {
+    if (typeof t !== "number" || Number.isNaN(t)) throw this.#invalid(`evaluate needs a time t in [0, 1], not ${String(t)}`);
+    return this.#evaluate(out, normals, () => this.#m._dcurve_cursor_evaluate(this.#cursor, t, this.#xyz, this.#error, ERROR_BYTES));
   }
 
-  // Writes input frame f exactly (clamped to [0, frameCount)).
-  evaluateFrame(f, out) {
-    if (!Number.isInteger(f)) throw new DcurveError(`evaluateFrame needs a frame number, not ${String(f)}`, INVALID);
-    return this.#evaluate(out, () => this.#m._dcurve_cursor_evaluate_frame(this.#cursor, f, this.#xyz, this.#error, ERROR_BYTES));
+  // Writes input frame f exactly (clamped to [0, frameCount)), and its normals as evaluate.
+  evaluateFrame(f, out, normals) {
+    if (!Number.isInteger(f)) throw this.#invalid(`evaluateFrame needs a frame number, not ${String(f)}`);
+    return this.#evaluate(out, normals, () => this.#m._dcurve_cursor_evaluate_frame(this.#cursor, f, this.#xyz, this.#error, ERROR_BYTES));
   }
 
-  #evaluate(out, call) {
+  #evaluate(out, normals, call) {
     const m = this.#live();
-    const n = this.#values;
-    floats(out, n, "the output");
+    this.#floats(out, "the output");
+    if (normals !== undefined) this.#checkNormalsOut(normals);
     this.#check(guarded(call));
-    out.set(m.HEAPF32.subarray(this.#xyz >> 2, (this.#xyz >> 2) + n));
+    out.set(m.HEAPF32.subarray(this.#xyz >> 2, (this.#xyz >> 2) + this.#values));
+    if (normals !== undefined) this.#normalsOf(normals);
     return out;
   }
 
-  // Unit vertex normals of the positions `xyz` into `out`; throws without connectivity.
+  // Unit vertex normals of any positions `xyz` into `out`; throws without connectivity. For
+  // the frame just evaluated, evaluate's `normals` saves copying the positions back in.
   computeNormals(xyz, out) {
     const m = this.#live();
-    const n = this.#values;
-    floats(xyz, n, "the positions");
-    floats(out, n, "the output");
-    m.HEAPF32.set(xyz.subarray(0, n), this.#xyz >> 2);
-    if (guarded(() => m._dcurve_compute_normals(this.#decoder, this.#xyz, this.#normals)) !== 0)
-      throw new DcurveError("the file has no connectivity: no normals", 2);
-    out.set(m.HEAPF32.subarray(this.#normals >> 2, (this.#normals >> 2) + n));
-    return out;
+    this.#floats(xyz, "the positions");
+    this.#checkNormalsOut(out);
+    m.HEAPF32.set(xyz.subarray(0, this.#values), this.#xyz >> 2);
+    return this.#normalsOf(out);
   }
 
   // Frees the decoder's wasm memory; further calls throw. Safe to call twice.

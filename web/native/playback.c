@@ -2,8 +2,11 @@
  *   dcurve_web_native positions FILE T...   one line per t: t, then vertex_count * 3 floats
  *   dcurve_web_native bench FILE [PASSES]   median ms per frame of playing every frame in
  *                                           order through a fresh cursor (open not timed)
- * web/test/browser.test.mjs compares the page's positions with the first, web/bench.mjs the
- * browser's per-frame time with the second. Exit status 1 with a message on a bad file. */
+ *   dcurve_web_native status-names          one line per code from -1 to 7: code, then its
+ *                                           dcurve_status_name
+ * web/test/viewer.browser.test.mjs compares the page's positions with the first,
+ * web/bench.mjs the browser's per-frame time with the second, web/test/status.test.mjs the
+ * wasm's status names with the third. Exit status 1 with a message on a bad file. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -82,8 +85,12 @@ static int bench(dcurve_decoder* d, float* xyz, int passes, char* err) {
 }
 
 int main(int argc, char** argv) {
+  if (argc == 2 && !strcmp(argv[1], "status-names")) {
+    for (int code = -1; code <= 7; ++code) printf("%d %s\n", code, dcurve_status_name(code));
+    return 0;
+  }
   if (argc < 3 || (strcmp(argv[1], "positions") && strcmp(argv[1], "bench"))) {
-    fprintf(stderr, "usage: %s positions FILE T... | bench FILE [PASSES]\n", argv[0]);
+    fprintf(stderr, "usage: %s positions FILE T... | bench FILE [PASSES] | status-names\n", argv[0]);
     return 2;
   }
   size_t size = 0;

@@ -37,6 +37,26 @@ test("computeNormals refuses short, missing or mistyped arrays", async () => {
   dec.close();
 });
 
+test("evaluate's normals output is checked before anything is decoded", async () => {
+  const dcurve = await loadDcurve();
+  const dec = dcurve.open(vector("sheet_compact_faces"));
+  const n = dec.vertexCount * 3;
+  const out = new Float32Array(n).fill(NaN);
+  for (const [normals, what] of [[new Float32Array(n - 1), "short"], [Array(n).fill(0), "a plain array"], [null, "null"]]) {
+    assertInvalid(() => dec.evaluate(0.5, out, normals), `evaluate's normals ${what}`);
+    assertInvalid(() => dec.evaluateFrame(1, out, normals), `evaluateFrame's normals ${what}`);
+  }
+  assert.ok(out.every(Number.isNaN), "nothing written by a refused call");
+  dec.close();
+  const flat = dcurve.open(vector("zero_segments_no_faces"));
+  assert.equal(flat.faceCount, 0);
+  const xyz = new Float32Array(flat.vertexCount * 3).fill(NaN);
+  assert.throws(() => flat.evaluate(0.5, xyz, new Float32Array(xyz.length)), { status: "invalid argument", message: /connectivity/ });
+  assert.ok(xyz.every(Number.isNaN), "no positions without the normals asked for");
+  flat.evaluate(0.5, xyz); // without normals, it decodes
+  flat.close();
+});
+
 test("evaluate and evaluateFrame refuse bad outputs, times and frame numbers", async () => {
   const dcurve = await loadDcurve();
   const dec = dcurve.open(vector("chunked"));

@@ -67,3 +67,19 @@ test("evaluateFrame gives the stored frames and counts match the file", async ()
   dec.close();
   assert.throws(() => dec.evaluate(0, byFrame), { name: "DcurveError", message: /closed/ });
 });
+
+test("evaluate's and evaluateFrame's normals are computeNormals of their positions", async () => {
+  const dcurve = await loadDcurve();
+  for (const name of ["sheet_compact_faces", "fit"]) {
+    const dec = dcurve.open(readFileSync(new URL(`${name}.dcrv`, vectors)));
+    const n = dec.vertexCount * 3;
+    const [xyz, normals, expected] = [new Float32Array(n), new Float32Array(n), new Float32Array(n)];
+    for (let f = 0; f < dec.frameCount; ++f) {
+      dec.evaluateFrame(f, xyz, normals);
+      assert.deepEqual(normals, dec.computeNormals(xyz, expected), `${name} frame ${f}`);
+      dec.evaluate((f + 0.5) / dec.frameCount, xyz, normals);
+      assert.deepEqual(normals, dec.computeNormals(xyz, expected), `${name} t ${(f + 0.5) / dec.frameCount}`);
+    }
+    dec.close();
+  }
+});
