@@ -2,28 +2,55 @@
 // file has connectivity) the returned DcurveAnimation rewrites for any time, at any playback
 // rate.
 //
-//   const anim = await new DcurveLoader().loadAsync("cloth.dcrv");
+//   const anim = await new DcurveLoader().loadAsync("cloth.dcrv"); // setWasmUrl(url) first to move the wasm
 //   scene.add(new THREE.Mesh(anim.geometry, material));
 //   renderer.setAnimationLoop(() => { anim.update(clock.getDelta()); renderer.render(scene, camera); });
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, FileLoader, Loader } from "three";
 
-import { loadDcurve } from "./dcurve.js";
+import { defaultWasmUrl, loadDcurve } from "./dcurve.js";
 
-let dcurveModule = null; // one WebAssembly module serves every loaded file
+// Each wasm URL's module (a promise), loaded once for every file; a failed load is forgotten
+// so that a later file tries again.
+const modules = new Map();
 
 export class DcurveLoader extends Loader {
+  wasmUrl = defaultWasmUrl;
+
+  // Where dcurve_wasm.wasm is served; the default is build/ beside dcurve.js.
+  setWasmUrl(url) {
+    this.wasmUrl = url;
+    return this;
+  }
+
   load(url, onLoad, onProgress, onError) {
+    // As three.js's GLTFLoader: one more manager item spans the parse, so a file that fetches
+    // but does not decode reaches manager.itemError too, and manager.onLoad waits for it.
+    this.manager.itemStart(url);
+    const fail = (e) => {
+      if (onError) onError(e);
+      else console.error(e);
+      this.manager.itemError(url);
+      this.manager.itemEnd(url);
+    };
     const files = new FileLoader(this.manager);
     files.setPath(this.path).setResponseType("arraybuffer").setRequestHeader(this.requestHeader);
-    files.setWithCredentials(this.withCredentials);
-    const fail = (e) => (onError ? onError(e) : console.error(e));
-    files.load(url, (buffer) => this.parse(buffer).then(onLoad, fail), onProgress, fail);
+    files.setWithCredentials(this.withCredentials).setPriority(this.priority).setCache(this.cache);
+    const loaded = (animation) => {
+      onLoad(animation);
+      this.manager.itemEnd(url);
+    };
+    files.load(url, (buffer) => this.parse(buffer).then(loaded).catch(fail), onProgress, fail);
   }
 
   // An ArrayBuffer holding a .dcrv to a DcurveAnimation (rejects with a DcurveError).
   async parse(buffer) {
-    dcurveModule ??= loadDcurve();
-    return new DcurveAnimation((await dcurveModule).open(buffer));
+    const key = String(this.wasmUrl);
+    if (!modules.has(key)) {
+      const module = loadDcurve({ wasmUrl: this.wasmUrl });
+      module.catch(() => modules.delete(key));
+      modules.set(key, module);
+    }
+    return new DcurveAnimation((await modules.get(key)).open(buffer));
   }
 }
 
@@ -70,8 +97,7 @@ export class DcurveAnimation {
   setT(t) {
     const { position, normal } = this.geometry.attributes;
     const start = performance.now();
-    this.decoder.evaluate(t, position.array);
-    if (normal) this.decoder.computeNormals(position.array, normal.array);
+    this.decoder.evaluate(t, position.array, normal?.array); // normals from the frame in wasm memory
     this.decodeMs = performance.now() - start;
     this.time = t * this.duration;
     position.needsUpdate = true;
