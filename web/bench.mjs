@@ -37,7 +37,7 @@ function sizes() {
 async function browserMs(path) {
   const viewer = await openViewer(dirname(resolve(path)), basename(path));
   try {
-    await viewer.page.evaluate(() => window.viewer.stopRendering());
+    await viewer.stopRendering(); // a quiet page: the viewer only hosts the modules here
     return await viewer.page.evaluate(async ({ url, passes }) => {
       const [{ loadDcurve }, { playbackMs }] = await Promise.all([import("/dcurve.js"), import("/test/playback.mjs")]);
       const bytes = new Uint8Array(await (await fetch(url)).arrayBuffer());

@@ -1,23 +1,27 @@
-// The viewer page in headless Chromium: it loads a .dcrv (a waving sheet the native encoder
-// writes), plays it, gives at several t the positions the native decoder gives, finds the
-// error against the input OBJ frames within the file's tolerance, and draws the mesh (a
-// canvas that is not blank; the screenshot's path is printed). Needs the wasm build,
-// Chromium, build/cli/dcurve and build/web/dcurve_web_native.
+// The viewer page in headless Chromium, driven from outside as a user would (its controls
+// and panel; the shown mesh through three.js's devtools hook): it loads a .dcrv (a waving
+// sheet the native encoder writes), plays it, shows at several t the positions the native
+// decoder gives, finds the error against the input OBJ frames within the file's tolerance,
+// and draws the mesh (a canvas that is not blank; the screenshot's path is printed). Needs
+// the wasm build, Chromium, build/cli/dcurve and build/web/dcurve_web_native.
 import assert from "node:assert/strict";
-import { mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import { copyFileSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { after, before, test } from "node:test";
 import { fileURLToPath } from "node:url";
 
+import { defaultWasmUrl } from "../dcurve.js";
 import { nativePositions, openViewer } from "./browser.mjs";
 import { encodeWave } from "./wave.mjs";
 
-const TIMES = [0, 0.123456789, 0.37, 0.5, 0.8, 1];
+// On the slider's 0.001 steps; 0.123 and 0.37 fall between frames.
+const TIMES = [0, 0.123, 0.37, 0.5, 0.8, 1];
 
 let dir, file, viewer;
 before(async () => {
   dir = mkdtempSync(`${tmpdir()}/dcurve-web-`);
   file = encodeWave(dir);
+  copyFileSync(fileURLToPath(defaultWasmUrl), `${dir}/moved.wasm`);
   viewer = await openViewer(dir, "wave.dcrv");
 });
 after(async () => {
@@ -25,22 +29,26 @@ after(async () => {
   rmSync(dir, { recursive: true, force: true });
 });
 
+const shownT = async () => Number(await viewer.page.textContent("#t"));
+
 test("playing moves the mesh through the clip", async () => {
   const { page } = viewer;
-  const start = await page.evaluate(() => window.viewer.positionsAt(0));
-  await page.evaluate(() => window.viewer.play());
-  await page.waitForFunction(() => window.viewer.info().steps >= 5);
-  await page.evaluate(() => window.viewer.pause());
-  const info = await page.evaluate(() => window.viewer.info());
-  assert.ok(info.duration > 0 && info.time > 0 && info.time <= info.duration, JSON.stringify(info));
-  const shown = await page.evaluate(() => Array.from(window.viewer.shownPositions()));
-  assert.notDeepEqual(shown, start, "the positions changed while playing");
+  const start = await viewer.positions();
+  await page.click("#play");
+  await page.waitForFunction(() => Number(document.getElementById("t").textContent) > 0);
+  await page.click("#play");
+  assert.equal(await page.textContent("#play"), "Play", "paused");
+  const t = await shownT();
+  assert.ok(t > 0 && t <= 1, `t ${t}`);
+  assert.notDeepEqual(await viewer.positions(), start, "the positions changed while playing");
 });
 
 test("positions in the page match the native decoder at several t", async () => {
   const expected = nativePositions(file, TIMES);
   for (const [k, t] of TIMES.entries()) {
-    const got = await viewer.page.evaluate((t) => window.viewer.positionsAt(t), t);
+    await viewer.page.fill("#scrub", String(t));
+    assert.equal(await shownT(), t);
+    const got = await viewer.positions();
     assert.equal(got.length, expected[k].length, `t ${t}: value count`);
     for (let i = 0; i < got.length; ++i) {
       // The same code, another compiler: float results agree to rounding.
@@ -50,36 +58,70 @@ test("positions in the page match the native decoder at several t", async () => 
   }
 });
 
-test("DcurveLoader.loadAsync fetches a file by URL", async () => {
-  const counts = await viewer.page.evaluate(async () => {
+test("DcurveLoader.loadAsync fetches a file by URL, and the wasm from setWasmUrl's", async () => {
+  const { page } = viewer;
+  const requested = [];
+  const record = (request) => requested.push(new URL(request.url()).pathname);
+  page.on("request", record);
+  const counts = await page.evaluate(async () => {
     const { DcurveLoader } = await import("/dcurve-loader.js");
-    const anim = await new DcurveLoader().loadAsync("/data/wave.dcrv");
+    const anim = await new DcurveLoader().setWasmUrl("/data/moved.wasm").loadAsync("/data/wave.dcrv");
     const result = [anim.geometry.attributes.position.count, anim.geometry.index.count / 3];
     anim.dispose();
     return result;
   });
+  page.off("request", record);
   assert.deepEqual(counts, [24 * 24, 2 * 23 * 23]);
+  assert.ok(requested.includes("/data/moved.wasm"), requested.join(", "));
 });
 
 test("the page's error against the input frames is within the tolerance", async () => {
   const { page } = viewer;
   await page.setInputFiles("#reference", `${dir}/frames`);
-  await page.waitForFunction(() => window.viewer.info().referenceError);
-  const { referenceError, tolerance } = await page.evaluate(() => window.viewer.info());
-  assert.equal(referenceError.frames, 30);
-  assert.ok(referenceError.ofL > 0 && referenceError.ofL <= tolerance, JSON.stringify(referenceError));
+  await page.waitForFunction(() => document.getElementById("info").textContent.includes("max error"));
+  const info = await viewer.info();
+  // "1.234e-4 of L (0.12 x tolerance), 30 frames" and "0.001 of L = 1.414"
+  const [, ofL, frames] = info["max error"].match(/^(\S+) of L \(.*\), (\d+) frames$/);
+  const tolerance = Number(info.tolerance.split(" ")[0]);
+  assert.equal(Number(frames), 30);
+  // The page shows 4 significant digits of the error.
+  assert.ok(Number(ofL) > 0 && Number(ofL) <= tolerance * (1 + 5e-4), info["max error"]);
 });
 
 test("the canvas shows the mesh", async () => {
   const { page, errors } = viewer;
-  await page.evaluate(() => window.viewer.positionsAt(0.5));
-  const { covered, total } = await page.evaluate(() => window.viewer.coveredPixels());
+  await page.fill("#scrub", "0.5");
+  const background = await viewer.background();
   const out = fileURLToPath(new URL("../out/", import.meta.url));
   mkdirSync(out, { recursive: true });
   await page.screenshot({ path: `${out}viewer.png` });
+  // The panel painted over in the background's colour: only the mesh differs from it.
+  const png = await page.screenshot({ mask: [page.locator("#panel")], maskColor: background });
+  const { covered, total } = await page.evaluate(async ({ png, background }) => {
+    const image = await createImageBitmap(await (await fetch(`data:image/png;base64,${png}`)).blob());
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext("2d");
+    context.drawImage(image, 0, 0);
+    const pixels = context.getImageData(0, 0, image.width, image.height).data;
+    const [r, g, b] = [1, 3, 5].map((i) => parseInt(background.slice(i, i + 2), 16));
+    let covered = 0;
+    for (let i = 0; i < pixels.length; i += 4)
+      if (Math.abs(pixels[i] - r) + Math.abs(pixels[i + 1] - g) + Math.abs(pixels[i + 2] - b) > 12) ++covered;
+    return { covered, total: image.width * image.height };
+  }, { png: png.toString("base64"), background });
   console.log(`screenshot: ${out}viewer.png (${covered} of ${total} pixels drawn)`);
   assert.ok(covered > total * 0.02, `only ${covered} of ${total} pixels differ from the background`);
   assert.deepEqual(errors, []);
+});
+
+test("the page adds no globals (tests drive it from outside)", async () => {
+  const added = await viewer.page.evaluate(() => {
+    const frame = document.body.appendChild(document.createElement("iframe"));
+    const blank = new Set(Object.getOwnPropertyNames(frame.contentWindow));
+    frame.remove();
+    return Object.getOwnPropertyNames(window).filter((name) => !blank.has(name)).sort();
+  });
+  assert.deepEqual(added, ["__THREE__"], "three.js's revision only"); // the frame has the tests' hook too
 });
 
 test("a damaged file chosen in the page shows the decoder's message", async () => {

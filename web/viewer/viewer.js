@@ -1,6 +1,7 @@
 // The viewer page: open or drop a .dcrv, play, scrub, set the speed, see the file's figures
 // and the decode time per frame, and optionally the error against a folder of OBJ frames.
-// `?file=URL` opens a file at start; window.viewer is what web/test/browser.test.mjs drives.
+// `?file=URL` opens a file at start. Nothing here is for tests: they drive the page from
+// outside (web/test/browser.mjs), through its controls and three.js's devtools hook.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 
@@ -63,14 +64,18 @@ function unload() {
   state.anim = state.mesh = null;
 }
 
-async function open(buffer, name) {
+// Opens a .dcrv from its bytes (or a promise of them); a failure to fetch or decode is shown
+// in the panel, prefixed with the file's name.
+async function open(bytes, name) {
   $("message").textContent = "";
   unload();
+  let buffer;
   try {
+    buffer = await bytes;
     state.anim = await new DcurveLoader().parse(buffer);
   } catch (e) {
     $("message").textContent = `${name}: ${e.message}`;
-    throw e;
+    return;
   }
   state.fileBytes = buffer.byteLength;
   state.name = name;
@@ -83,10 +88,10 @@ async function open(buffer, name) {
   showInfo();
 }
 
-async function openUrl(url) {
+async function fetchBytes(url) {
   const response = await fetch(url);
-  if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
-  return open(await response.arrayBuffer(), url.split("/").pop());
+  if (!response.ok) throw new Error(`HTTP ${response.status}`);
+  return response.arrayBuffer();
 }
 
 function decodeMsAverage() {
@@ -172,8 +177,7 @@ async function compareWithReference(files) {
 
 // ---- wiring
 
-// A chosen or dropped file; a refusal is already shown in the panel.
-const openFile = async (file) => open(await file.arrayBuffer(), file.name).catch(() => {});
+const openFile = (file) => open(file.arrayBuffer(), file.name);
 
 $("file").addEventListener("change", async (e) => {
   const file = e.target.files[0];
@@ -207,33 +211,5 @@ addEventListener("resize", resize);
 resize();
 renderer.setAnimationLoop(tick);
 
-// Non-background pixels of a freshly rendered frame, read back before it is presented.
-function coveredPixels() {
-  renderer.render(scene, camera);
-  const gl = renderer.getContext();
-  const { drawingBufferWidth: width, drawingBufferHeight: height } = gl;
-  const pixels = new Uint8Array(width * height * 4);
-  gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
-  const bg = new THREE.Color(BACKGROUND).convertLinearToSRGB();
-  const [r, g, b] = [bg.r, bg.g, bg.b].map((c) => Math.round(c * 255));
-  let covered = 0;
-  for (let i = 0; i < pixels.length; i += 4)
-    if (Math.abs(pixels[i] - r) + Math.abs(pixels[i + 1] - g) + Math.abs(pixels[i + 2] - b) > 12) ++covered;
-  return { covered, total: width * height };
-}
-
-window.viewer = {
-  openUrl,
-  stopRendering: () => renderer.setAnimationLoop(null), // quiet page for benchmarks
-  play: () => setPlaying(true),
-  pause: () => setPlaying(false),
-  shownPositions: () => state.anim.geometry.attributes.position.array,
-  positionsAt: (t) => Array.from(state.anim.setT(t).geometry.attributes.position.array),
-  info: () => ({
-    time: state.anim.time, duration: state.anim.duration, tolerance: state.anim.decoder.tolerance,
-    decodeMs: decodeMsAverage(), steps: state.decodeMs.length, referenceError: state.referenceError,
-  }),
-  coveredPixels,
-};
 const file = new URLSearchParams(location.search).get("file");
-window.viewer.ready = file ? openUrl(file) : Promise.resolve();
+if (file) open(fetchBytes(file), file.split("/").pop());
