@@ -8,6 +8,7 @@
 #include "cli/messages.h"
 #include "codec/common/error.h"
 #include "codec/common/inbetween.h"
+#include "codec/common/render_mesh.h"
 #include "decoder/dcurve.hpp"
 
 namespace dcurve::cli {
@@ -41,6 +42,26 @@ bool decode_times(const DecodeOpts& o, const Decoder& dec, std::vector<double>* 
   return true;
 }
 
+// glTF output draws render vertices: seam copies share their vertex's position, with the
+// file's UVs and colours, its placement, and normals per frame (smooth across UV seams).
+void describe_render_output(const Decoder& dec, OutputSpec* spec) {
+  GltfScene& scene = spec->gltf;
+  scene.placement.start_time = dec.start_time();
+  scene.placement.has_matrix = dec.world_matrix(scene.placement.matrix);
+  scene.placement.mesh_name = dec.mesh_name();
+  scene.placement.node_name = dec.node_name();
+  scene.normals = dec.face_count() > 0;
+  spec->vertex_count = dec.render_vertex_count();
+  if (dec.render_faces()) spec->faces.assign(dec.render_faces(), dec.render_faces() + 3 * size_t(dec.face_count()));
+  for (Attribute a : {Attribute::TexCoord0, Attribute::TexCoord1, Attribute::Color0}) {
+    const uint32_t n = dec.attribute_components(a);
+    if (n == 0) continue;
+    const float* v = dec.attribute(a);
+    scene.attributes.push_back({attribute_gltf_name(AttributeSemantic(int(a))), n,
+                                std::vector<float>(v, v + size_t(n) * spec->vertex_count)});
+  }
+}
+
 OutputSpec output_spec(const DecodeOpts& o, const Decoder& dec, uint32_t frames) {
   OutputSpec spec;
   spec.path = o.output;
@@ -54,6 +75,8 @@ OutputSpec output_spec(const DecodeOpts& o, const Decoder& dec, uint32_t frames)
   // Frames at i/(N-1) of the clip: the rate that keeps the clip's duration.
   const double duration = dec.frame_count() > 1 && dec.frame_rate() > 0 ? (dec.frame_count() - 1) / dec.frame_rate() : 0;
   spec.frame_rate = frames > 1 && duration > 0 ? (frames - 1) / duration : dec.frame_rate();
+  spec.start_time = dec.start_time();
+  if (o.kind == OutputKind::Gltf) describe_render_output(dec, &spec);
   return spec;
 }
 
@@ -67,6 +90,12 @@ int run_decode(const DecodeOpts& o, const Messages& msg) {
   auto sink = open_output(output_spec(o, *dec, uint32_t(times.size())), &err);
   if (!sink) return msg.error(err);
   std::vector<float> xyz(size_t(dec->vertex_count()) * 3);
+  const bool render = o.kind == OutputKind::Gltf;
+  std::vector<float> render_xyz, normals;
+  if (render) {
+    render_xyz.resize(size_t(dec->render_vertex_count()) * 3);
+    if (dec->face_count() > 0) normals.resize(render_xyz.size());
+  }
   auto cursor = dec->make_cursor();
   Inbetween rule;
   if (inbetween_from_name(o.interp.c_str(), &rule)) cursor->set_interpolation(Interpolation(int(rule)));
@@ -74,7 +103,12 @@ int run_decode(const DecodeOpts& o, const Messages& msg) {
   for (size_t i = 0; i < times.size(); ++i) {
     Error e;
     if (!cursor->evaluate(times[i], xyz.data(), &e)) return msg.error(o.input + ": " + e.message);
-    if (!sink->add(uint32_t(i), xyz.data(), &err)) return msg.error(err);
+    if (render) {
+      dec->render_positions(xyz.data(), render_xyz.data());
+      if (!normals.empty()) dec->compute_render_normals(xyz.data(), normals.data());
+    }
+    const float* out = render ? render_xyz.data() : xyz.data();
+    if (!sink->add(uint32_t(i), out, normals.empty() ? nullptr : normals.data(), &err)) return msg.error(err);
     if (progress) progress(double(i + 1) / double(times.size()));
   }
   if (!sink->finish(&err)) return msg.error(err);

@@ -11,6 +11,7 @@
 #include "cli/number_range.h"
 #include "cli/output_path.h"
 #include "codec/common/inbetween.h"
+#include "codec/common/render_mesh.h"
 #include "encoder/curves/report_json.h"
 #include "encoder/encoder.h"
 #include "corpus/input.h"
@@ -60,6 +61,9 @@ bool read_and_encode(const std::string& input, const InputOptions& io, EncodeOpt
     msg.detail("read " + std::to_string(anim->frames.size()) + " frames of " + std::to_string(anim->vertex_count) +
                " vertices, " + std::to_string(anim->faces.size() / 3) + " triangles, " +
                std::to_string(anim->frame_rate) + " fps from " + input);
+    for (const std::string& note : anim->notes) msg.note(input + ": " + note);
+    if (!eo.connectivity && !anim->render.empty())
+      msg.note(input + ": --no-connectivity: the file keeps no render vertices (UVs, seams), which follow the faces");
     stage = "encoding it";
     eo.progress = msg.progress("encode");
     if (encode_animation(*anim, eo, bytes, rep, err)) return true;
@@ -80,6 +84,7 @@ Action add_encode(CLI::App& app) {
     bool keep_all_motions = false, force = false;
     InputOptions input_options;
     int threads = 0, effort = EncodeOptions().effort;
+    int uv_bits = EncodeOptions().attributes.texcoord_bits;
     std::string model = "none", low_rank = "auto", segment_frames = "auto", grid = "auto", chunk_frames = "auto";
     std::string inbetween = "auto", profile = "small";
     uint32_t curve_points = 64;
@@ -167,6 +172,11 @@ Action add_encode(CLI::App& app) {
   // still run (hidden from --help).
   app.add_flag("--reorder-faces", o->reorder_faces, "Deprecated: the default")->group("");
   app.add_flag("--no-connectivity", o->no_connectivity, "Leave faces out of the file (the engine has the mesh)");
+  app.add_option("--uv-bits", o->uv_bits,
+                 "Precision of texture coordinates, bits per component over each one's range in the input "
+                 "(14: 1/16383 of the range)")
+      ->check(CLI::Range(1, int(kMaxAttributeBits)))
+      ->capture_default_str();
   app.add_option("--threads", o->threads, "Worker threads, 0 = all cores (output is the same for any count)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--json", o->json, "Print one JSON object with the encode summary on stdout");
@@ -188,6 +198,7 @@ Action add_encode(CLI::App& app) {
     eo.connectivity = !o->no_connectivity;
     eo.exact_face_order = o->keep_face_order;
     eo.threads = o->threads;
+    eo.attributes.texcoord_bits = uint8_t(o->uv_bits);
     eo.model = o->model == "pde8"    ? ModelChoice::Pde8
                : o->model == "pde32" ? ModelChoice::Pde32
                : o->model == "pde"   ? ModelChoice::Pde

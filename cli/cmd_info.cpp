@@ -9,6 +9,7 @@
 #include "cli/face_order_text.h"
 #include "codec/common/container_format.h"
 #include "codec/common/inbetween.h"
+#include "codec/common/render_mesh.h"
 #include "codec/common/residual.h"
 #include "codec/compress/low_rank_writer.h"
 #include "codec/decompress/container_reader.h"
@@ -71,6 +72,20 @@ uint64_t section_bytes(const std::vector<SectionInfo>& sections, const std::stri
 }
 
 // Everything `dcurve info` reports, as one JSON object; the text output prints from it.
+
+// Render vertices, their attributes and the placement (REND, PLAC).
+nlohmann::json describe_render(const Model& m) {
+  nlohmann::json attributes = nlohmann::json::array();
+  for (const RenderAttribute& a : m.render.attributes)
+    attributes.push_back({{"name", attribute_gltf_name(a.semantic)}, {"components", a.components}, {"bits", a.bits}});
+  const Placement& p = m.placement;
+  return {{"render_vertices", m.render.empty() ? m.meta.vertex_count : uint32_t(m.render.source.size())},
+          {"attributes", attributes},
+          {"start_time", p.start_time},
+          {"matrix", p.has_matrix ? nlohmann::json(std::vector<double>(p.matrix, p.matrix + 16)) : nlohmann::json()},
+          {"mesh_name", p.mesh_name},
+          {"node_name", p.node_name}};
+}
 
 nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& bytes, const Model& m,
                         const std::vector<SectionInfo>& sections) {
@@ -155,6 +170,7 @@ nlohmann::json describe(const std::string& path, const std::vector<uint8_t>& byt
             {"basis_payload_bytes", m.low_rank.basis_payload.size()},
             {"posed", !m.low_rank.poses.empty()},
             {"pose_bytes", pose_bytes(m)}}},
+          {"render", describe_render(m)},
           {"sections", js}};
 }
 
@@ -175,6 +191,21 @@ std::string printable(const std::string& text) {
 }
 
 // What every user asks first: size, counts, tolerance, which model and which face layout.
+void print_render(const nlohmann::json& r, uint32_t vertices) {
+  std::string attributes;
+  for (const auto& a : r["attributes"])
+    attributes += (attributes.empty() ? "" : ", ") + a["name"].get<std::string>() + " (" +
+                  std::to_string(a["bits"].get<int>()) + " bits)";
+  if (r["render_vertices"].get<uint32_t>() != vertices || !attributes.empty())
+    std::printf("  render vertices: %u (seam copies share their vertex's position); attributes: %s\n",
+                r["render_vertices"].get<uint32_t>(), attributes.empty() ? "none" : attributes.c_str());
+  if (!r["matrix"].is_null() || r["start_time"].get<double>() != 0 || !r["node_name"].get<std::string>().empty() ||
+      !r["mesh_name"].get<std::string>().empty())
+    std::printf("  placement: mesh \"%s\", node \"%s\", %s, first frame at %.6g s\n",
+                printable(r["mesh_name"].get<std::string>()).c_str(), printable(r["node_name"].get<std::string>()).c_str(),
+                r["matrix"].is_null() ? "no transform" : "a node transform", r["start_time"].get<double>());
+}
+
 void print_summary(const nlohmann::json& j) {
   std::printf("%s: %llu bytes, .dcrv %s\n", j["file"].get<std::string>().c_str(),
               (unsigned long long)j["bytes"].get<uint64_t>(), j["version"].get<std::string>().c_str());
@@ -198,6 +229,7 @@ void print_summary(const nlohmann::json& j) {
                 r["chunks"].get<uint32_t>(), r["chunk_frames"].get<uint32_t>());
   else
     std::printf("  no residual layer: positions come from the motion model alone\n");
+  print_render(j["render"], j["vertices"].get<uint32_t>());
 }
 
 // The curves and the PDE motions per segment (all Zero without a PDE model).

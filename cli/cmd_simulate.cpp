@@ -36,7 +36,7 @@ bool write_frames(const std::string& path, OutputKind kind, bool force, const An
   auto sink = open_output(spec, error);
   if (!sink) return false;
   for (size_t f = 0; f < anim.frames.size(); ++f)
-    if (!sink->add(uint32_t(f), anim.frames[f].data(), error)) return false;
+    if (!sink->add(uint32_t(f), anim.frames[f].data(), nullptr, error)) return false;
   return sink->finish(error);
 }
 

@@ -18,7 +18,7 @@ namespace {
 class MeshSink : public FrameSink {
  public:
   explicit MeshSink(const OutputSpec& spec) : spec_(spec) {}
-  bool add(uint32_t, const float* xyz, std::string*) override {
+  bool add(uint32_t, const float* xyz, const float*, std::string*) override {
     xyz_.assign(xyz, xyz + size_t(spec_.vertex_count) * 3);
     return true;
   }
@@ -34,9 +34,12 @@ class MeshSink : public FrameSink {
 class GltfSink : public FrameSink {
  public:
   explicit GltfSink(const OutputSpec& spec)
-      : writer_(spec.vertex_count, spec.faces, spec.frame_count, spec.frame_rate, lowercase_extension(spec.path) == ".glb") {}
+      : writer_(spec.vertex_count, spec.faces, spec.frame_count, spec.frame_rate, lowercase_extension(spec.path) == ".glb",
+                spec.gltf) {}
   bool open(const OutputSpec& spec, std::string* error) { return writer_.open(spec.path, spec.force, error); }
-  bool add(uint32_t, const float* xyz, std::string* error) override { return writer_.add_frame(xyz, error); }
+  bool add(uint32_t, const float* xyz, const float* normals, std::string* error) override {
+    return writer_.add_frame(xyz, error, normals);
+  }
   bool finish(std::string* error) override { return writer_.finish(error); }
 
  private:
@@ -50,9 +53,9 @@ class PointCacheSink : public FrameSink {
     point_cache_kind(spec.path, &kind);
     if (!file_.open(spec.path, spec.force, error)) return false;
     writer_ = std::make_unique<PointCacheWriter>(kind, &file_, spec.vertex_count);
-    return writer_->write_header(spec.frame_count, spec.frame_rate > 0 ? spec.frame_rate : 30.0, error);
+    return writer_->write_header(spec.frame_count, spec.frame_rate > 0 ? spec.frame_rate : 30.0, spec.start_time, error);
   }
-  bool add(uint32_t, const float* xyz, std::string* error) override { return writer_->write_frame(xyz, error); }
+  bool add(uint32_t, const float* xyz, const float*, std::string* error) override { return writer_->write_frame(xyz, error); }
   bool finish(std::string* error) override { return file_.commit(error); }
 
  private:
@@ -66,7 +69,7 @@ class FolderSink : public FrameSink {
     spec_ = spec;
     return folder_.open(spec.path, spec.force, error);
   }
-  bool add(uint32_t index, const float* xyz, std::string* error) override {
+  bool add(uint32_t index, const float* xyz, const float*, std::string* error) override {
     return write_folder_frame(&folder_, index, spec_.folder_format, xyz, spec_.vertex_count, spec_.faces, error);
   }
   bool finish(std::string* error) override { return folder_.commit(error); }

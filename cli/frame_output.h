@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/output_path.h"
+#include "encoder/io/gltf_writer.h"
 
 namespace dcurve::cli {
 
@@ -21,14 +22,17 @@ struct OutputSpec {
   uint32_t vertex_count = 0, frame_count = 0;
   std::vector<uint32_t> faces;
   double frame_rate = 30;
+  double start_time = 0;              // seconds of the first frame (PC2 start frame, MDD and glTF times)
+  GltfScene gltf;                     // a glTF output's static attributes, placement and normals
   std::vector<std::string> inputs;    // files the command reads: never the output
 };
 
 class FrameSink {
  public:
   virtual ~FrameSink() = default;
-  // Frame `index` of frame_count, in order.
-  virtual bool add(uint32_t index, const float* xyz, std::string* error) = 0;
+  // Frame `index` of frame_count, in order; `normals` (same size, or null) where the output
+  // asked for them (OutputSpec::gltf.normals).
+  virtual bool add(uint32_t index, const float* xyz, const float* normals, std::string* error) = 0;
   // Moves the complete output into place.
   virtual bool finish(std::string* error) = 0;
 };

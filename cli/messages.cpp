@@ -20,6 +20,10 @@ void Messages::detail(const std::string& message) const {
   if (verbose_) std::fprintf(stderr, "dcurve %s: %s\n", command_.c_str(), message.c_str());
 }
 
+void Messages::note(const std::string& message) const {
+  if (!quiet_) std::fprintf(stderr, "dcurve %s: note: %s\n", command_.c_str(), message.c_str());
+}
+
 std::function<void(double)> Messages::progress(const std::string& label) const {
   return quiet_ ? std::function<void(double)>() : progress_bar(label, "dcurve " + command_ + ": ");
 }

@@ -17,6 +17,8 @@ class Messages {
   // Prints the error and returns 1, the exit code of bad input or failure.
   int error(const std::string& message) const;
   void detail(const std::string& message) const;
+  // What the user should know though nothing failed (input the command does not keep); unless -q.
+  void note(const std::string& message) const;
   // The progress callback for the stage `label` (empty when quiet).
   std::function<void(double)> progress(const std::string& label) const;
 

@@ -35,11 +35,10 @@ namespace {
 
 // A point cache's positions with the faces of its rest mesh.
 bool load_point_cache(const std::string& input, const std::string& rest_mesh, uint64_t max_memory, Animation* anim,
-                      std::string* error) {
+                      PointCacheInfo* info, std::string* error) {
   if (rest_mesh.empty())
     return fail(error, input + ": a point cache holds positions only: give the faces with --mesh REST.obj");
-  PointCacheInfo info;
-  if (!read_point_cache(input, anim, &info, error, max_memory)) return false;
+  if (!read_point_cache(input, anim, info, error, max_memory)) return false;
   std::vector<float> rest;
   if (!read_mesh(rest_mesh, &rest, &anim->faces, error)) return false;
   if (rest.size() != size_t(anim->vertex_count) * 3)
@@ -58,13 +57,16 @@ bool load_animation_input(const std::string& input, const InputOptions& options,
     return fail(error, input + ": --mesh is for point caches (.pc2, .mdd) only");
   if (options.gltf_mesh >= 0 && !is_gltf_path(input)) return fail(error, input + ": --gltf-mesh is for glTF files only");
   bool ok;
+  PointCacheInfo info;
   if (cache)
-    ok = load_point_cache(input, options.rest_mesh, options.limits.max_memory, anim, error);
+    ok = load_point_cache(input, options.rest_mesh, options.limits.max_memory, anim, &info, error);
   else if (is_gltf_path(input))
     ok = read_gltf_animation(input, options.gltf_mesh, anim, error, options.limits);
   else
     ok = load_animation_input(input, false, progress, anim, error);
   if (ok && options.fps > 0) anim->frame_rate = options.fps;
+  // The first frame's time: MDD states it in seconds, PC2 as a frame number at the clip's rate.
+  if (ok && cache) anim->placement.start_time = kind == PointCacheKind::Pc2 ? info.start / anim->frame_rate : info.start;
   return ok;
 }
 

@@ -140,6 +140,39 @@ int dcurve_compute_normals(const dcurve_decoder* d, const float* xyz, float* n) 
   return d && xyz && n && d->d->compute_normals(xyz, n) ? DCURVE_OK : DCURVE_ERROR_INVALID_ARGUMENT;
 }
 
+uint32_t dcurve_render_vertex_count(const dcurve_decoder* d) { return d ? d->d->render_vertex_count() : 0; }
+const uint32_t* dcurve_render_source(const dcurve_decoder* d) { return d ? d->d->render_source() : nullptr; }
+const uint32_t* dcurve_render_faces(const dcurve_decoder* d) { return d ? d->d->render_faces() : nullptr; }
+
+static bool known_attribute(int a) { return a >= DCURVE_ATTRIBUTE_TEXCOORD_0 && a <= DCURVE_ATTRIBUTE_NORMAL; }
+uint32_t dcurve_attribute_components(const dcurve_decoder* d, int a) {
+  return d && known_attribute(a) ? d->d->attribute_components(dcurve::Attribute(a)) : 0;
+}
+const float* dcurve_attribute(const dcurve_decoder* d, int a) {
+  return d && known_attribute(a) ? d->d->attribute(dcurve::Attribute(a)) : nullptr;
+}
+int dcurve_render_positions(const dcurve_decoder* d, const float* xyz, float* out) {
+  if (!d || !xyz || !out) return DCURVE_ERROR_INVALID_ARGUMENT;
+  d->d->render_positions(xyz, out);
+  return DCURVE_OK;
+}
+int dcurve_compute_render_normals(const dcurve_decoder* d, const float* xyz, float* n) {
+  if (!d || !xyz || !n) return DCURVE_ERROR_INVALID_ARGUMENT;
+  return guarded(nullptr, 0, [&] { return d->d->compute_render_normals(xyz, n) ? DCURVE_OK : DCURVE_ERROR_INVALID_ARGUMENT; });
+}
+double dcurve_start_time(const dcurve_decoder* d) { return d ? d->d->start_time() : 0.0; }
+int dcurve_world_matrix(const dcurve_decoder* d, double matrix[16]) {
+  static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  if (!matrix) return 0;
+  if (!d) {
+    std::memcpy(matrix, identity, sizeof identity);
+    return 0;
+  }
+  return d->d->world_matrix(matrix) ? 1 : 0;
+}
+const char* dcurve_mesh_name(const dcurve_decoder* d) { return d ? d->d->mesh_name().c_str() : ""; }
+const char* dcurve_node_name(const dcurve_decoder* d) { return d ? d->d->node_name().c_str() : ""; }
+
 int dcurve_cursor_create(const dcurve_decoder* d, dcurve_cursor** out) {
   if (!out) return DCURVE_ERROR_INVALID_ARGUMENT;
   *out = nullptr;

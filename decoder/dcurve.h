@@ -18,11 +18,11 @@
 #include <stdint.h>
 
 #define DCURVE_VERSION_MAJOR 0
-#define DCURVE_VERSION_MINOR 3
+#define DCURVE_VERSION_MINOR 4
 #define DCURVE_VERSION_PATCH 0
 #define DCURVE_VERSION ((DCURVE_VERSION_MAJOR << 16) | (DCURVE_VERSION_MINOR << 8) | DCURVE_VERSION_PATCH)
-/* The .dcrv format major version this library reads and writes. */
-#define DCURVE_FORMAT_VERSION_MAJOR 3
+/* The newest .dcrv format major version this library reads (it reads 3 and 4). */
+#define DCURVE_FORMAT_VERSION_MAJOR 4
 
 #define DCURVE_OK 0
 #define DCURVE_ERROR_MALFORMED 1        /* not a valid .dcrv, or a format version not read here */
@@ -36,6 +36,12 @@
 #define DCURVE_INTERPOLATION_LINEAR 0
 #define DCURVE_INTERPOLATION_CATMULL_ROM 1
 #define DCURVE_INTERPOLATION_HERMITE4 2
+
+/* Static attributes of render vertices (format 3.3 / 4.1), the glTF attribute names. */
+#define DCURVE_ATTRIBUTE_TEXCOORD_0 0
+#define DCURVE_ATTRIBUTE_TEXCOORD_1 1
+#define DCURVE_ATTRIBUTE_COLOR_0 2
+#define DCURVE_ATTRIBUTE_NORMAL 3
 
 #ifdef __cplusplus
 extern "C" {
@@ -81,6 +87,34 @@ int dcurve_evaluate_frame(const dcurve_decoder* decoder, uint32_t frame, float* 
 int dcurve_evaluate_ex(const dcurve_decoder* decoder, double t, float* xyz_out, char* error, size_t error_size);
 /* Unit vertex normals of `xyz`; returns non-zero when the file has no connectivity. */
 int dcurve_compute_normals(const dcurve_decoder* decoder, const float* xyz, float* normals_out);
+
+/* Render vertices: what a game draws. A file made from a mesh with UV or normal seams splits a
+ * vertex into copies at the same position; positions are coded once per vertex, so copies
+ * never drift apart. Without such data (files before 3.3) render vertices are the vertices. */
+uint32_t dcurve_render_vertex_count(const dcurve_decoder* decoder);
+/* render_vertex_count ids: the vertex whose position each render vertex shows; NULL when
+ * render vertices are the vertices. Owned by the decoder. */
+const uint32_t* dcurve_render_source(const dcurve_decoder* decoder);
+/* 3 * face_count render vertex ids, the triangles of dcurve_faces in the same order; NULL
+ * when render vertices are the vertices (use dcurve_faces). */
+const uint32_t* dcurve_render_faces(const dcurve_decoder* decoder);
+/* Components of a DCURVE_ATTRIBUTE_* (2 for texture coordinates, 3 for normals, 3 or 4 for
+ * colours), 0 when the file has none; the values: render_vertex_count * components floats
+ * owned by the decoder, or NULL. */
+uint32_t dcurve_attribute_components(const dcurve_decoder* decoder, int attribute);
+const float* dcurve_attribute(const dcurve_decoder* decoder, int attribute);
+/* Positions of render vertices (render_vertex_count * 3 floats) from vertex positions. */
+int dcurve_render_positions(const dcurve_decoder* decoder, const float* xyz, float* render_xyz_out);
+/* Unit normals of render vertices from vertex positions: copies of a vertex share one normal,
+ * smooth across UV seams, unless the input's own normals differ there (a hard edge). */
+int dcurve_compute_render_normals(const dcurve_decoder* decoder, const float* xyz, float* normals_out);
+/* Placement (PLAC): seconds of frame 0 in the input's timeline (0 when unknown); the world
+ * transform of the input's node, column-major, written to matrix_out (identity and return 0
+ * when the file has none, 1 when it has one); the input's mesh and node names ("" if none). */
+double dcurve_start_time(const dcurve_decoder* decoder);
+int dcurve_world_matrix(const dcurve_decoder* decoder, double matrix_out[16]);
+const char* dcurve_mesh_name(const dcurve_decoder* decoder);
+const char* dcurve_node_name(const dcurve_decoder* decoder);
 
 /* A playback cursor for one thread; must be destroyed before its decoder is closed. */
 int dcurve_cursor_create(const dcurve_decoder* decoder, dcurve_cursor** out);

@@ -51,6 +51,14 @@ enum class Interpolation : int {
   Hermite4 = DCURVE_INTERPOLATION_HERMITE4,
 };
 
+// Static attributes of render vertices (format 3.3 / 4.1).
+enum class Attribute : int {
+  TexCoord0 = DCURVE_ATTRIBUTE_TEXCOORD_0,
+  TexCoord1 = DCURVE_ATTRIBUTE_TEXCOORD_1,
+  Color0 = DCURVE_ATTRIBUTE_COLOR_0,
+  Normal = DCURVE_ATTRIBUTE_NORMAL,
+};
+
 class Cursor;
 
 class Decoder {
@@ -91,6 +99,29 @@ class Decoder {
   // `normals_out` (same size). Needs connectivity; returns false when the file has none.
   bool compute_normals(const float* xyz, float* normals_out) const;
 
+  // Render vertices: what a game draws (dcurve.h says more). Without REND (files before
+  // 3.3, or inputs without seams or attributes) they are the vertices: render_source and
+  // render_faces are nullptr and render_vertex_count() == vertex_count().
+  uint32_t render_vertex_count() const;
+  const uint32_t* render_source() const;  // per render vertex, its vertex
+  const uint32_t* render_faces() const;   // 3 * face_count render ids, the faces' order
+  // render_vertex_count * attribute_components(a) floats, or nullptr when the file has none.
+  uint32_t attribute_components(Attribute a) const;
+  const float* attribute(Attribute a) const;
+  const float* uvs() const { return attribute(Attribute::TexCoord0); }
+  const float* colors() const { return attribute(Attribute::Color0); }
+  // Render vertex positions (render_vertex_count * 3) from vertex positions `xyz`.
+  void render_positions(const float* xyz, float* render_xyz_out) const;
+  // Unit normals per render vertex: copies of a vertex share one (smooth across UV seams)
+  // unless the input's normals differ between them. Needs connectivity.
+  bool compute_render_normals(const float* xyz, float* normals_out) const;
+  // Placement (PLAC): frame 0's time in seconds in the input's timeline (0 unknown), the
+  // input node's world transform (column-major; false and identity when the file has none),
+  // the input's mesh and node names.
+  double start_time() const;
+  bool world_matrix(double matrix_out[16]) const;
+  const std::string& mesh_name() const;
+  const std::string& node_name() const;
   // A cursor of its own for one thread (sequential playback decodes each chunk once).
   // The cursor refers to this decoder, which must outlive it.
   std::unique_ptr<Cursor> make_cursor() const;

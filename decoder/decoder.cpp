@@ -10,18 +10,10 @@
 #include "codec/decompress/container_reader.h"
 #include "codec/decompress/residual_decoder.h"
 #include "decoder_state.h"
+#include "normals.h"
 #include "dcurve.hpp"
 
 namespace dcurve {
-
-struct Decoder::Impl {
-  SharedState shared;
-  // The window behind Decoder::evaluate: one call at a time.
-  mutable std::mutex mutex;
-  mutable std::unique_ptr<ChunkWindow> window;
-  bool rule_set = false;  // the internal window uses `rule`, not the file's
-  Inbetween rule = Inbetween::Linear;
-};
 
 struct Cursor::State {
   explicit State(const SharedState& shared) : window(shared) {}
@@ -53,6 +45,7 @@ bool prepare(SharedState* shared, uint64_t file_bytes, std::string* error) {
     if (shared->fast()) shared->fast_traversal = fast_traversal(m.faces, m.meta.vertex_count);
     else shared->traversal = build_traversal(m);
   }
+  build_render_state(&shared->model, &shared->render);
   const bool has_traversal = m.residual.step > 0 && !shared->fast();
   return shared->predictor.build(m, budget, error, has_traversal ? &shared->traversal : nullptr,
                                  shared->fast() ? &shared->fast_traversal : nullptr);
@@ -209,24 +202,7 @@ size_t Decoder::memory_bytes() const {
 bool Decoder::compute_normals(const float* xyz, float* normals) const {
   const auto& faces = impl_->shared.model.faces;
   if (faces.empty()) return false;
-  const size_t V = vertex_count();
-  std::fill_n(normals, V * 3, 0.f);
-  for (size_t t = 0; t + 2 < faces.size(); t += 3) {
-    const float* p0 = xyz + 3 * faces[t];
-    const float* p1 = xyz + 3 * faces[t + 1];
-    const float* p2 = xyz + 3 * faces[t + 2];
-    float e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
-    float e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-    // The unnormalized cross product weights each face by its area.
-    float c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    for (int k = 0; k < 3; ++k)
-      for (int a = 0; a < 3; ++a) normals[3 * faces[t + k] + a] += c[a];
-  }
-  for (size_t v = 0; v < V; ++v) {
-    float* nv = normals + 3 * v;
-    float len = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
-    if (len > 0.f) for (int a = 0; a < 3; ++a) nv[a] /= len;
-  }
+  area_normals(xyz, faces.data(), faces.size(), faces.data(), vertex_count(), normals);
   return true;
 }
 

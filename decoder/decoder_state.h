@@ -19,12 +19,26 @@
 namespace dcurve {
 
 // Immutable after open.
+// Render vertices as a game draws them (REND), built at open: the attributes as floats and
+// the groups of render vertices that share a computed normal.
+struct RenderState {
+  std::vector<float> attributes[kAttributeSemanticCount];  // empty when the file has none
+  uint32_t components[kAttributeSemanticCount] = {};
+  std::vector<uint32_t> normal_group;  // per render vertex
+  uint32_t normal_groups = 0;
+  size_t memory_bytes() const;
+};
+// Builds it from model->render (the file must have passed validate_model), then frees the
+// attributes' quantized values, which nothing reads again.
+void build_render_state(Model* model, RenderState* state);
+
 struct SharedState {
   Model model;          // residual.payload: the chunk index only
   ResidualIndex index;  // empty without a residual layer
   Traversal traversal;  // the residual layer's vertex order and neighbours (format 3)
   FastTraversal fast_traversal;  // format 4's
   GridPredictor predictor;
+  RenderState render;
   std::unique_ptr<ChunkSource> chunks;
 
   bool has_residual() const { return !index.chunks.empty(); }
@@ -89,6 +103,16 @@ class ChunkWindow {
   std::vector<uint8_t> read_buffer_;
   std::vector<float> scratch_;
   PredictionScratch prediction_scratch_;
+};
+
+// What a Decoder holds (decoder.cpp opens it, render.cpp answers the render calls).
+struct Decoder::Impl {
+  SharedState shared;
+  // The window behind Decoder::evaluate: one call at a time.
+  mutable std::mutex mutex;
+  mutable std::unique_ptr<ChunkWindow> window;
+  bool rule_set = false;  // the internal window uses `rule`, not the file's
+  Inbetween rule = Inbetween::Linear;
 };
 
 }  // namespace dcurve

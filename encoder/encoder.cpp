@@ -18,6 +18,7 @@
 #include "encoder/curves/extract.h"
 #include "encoder/curves/report.h"
 #include "encoder/face_order.h"
+#include "encoder/render_attributes.h"
 #include "encoder/rate/block_flags.h"
 #include "encoder/rate/fast_low_rank.h"
 #include "encoder/rate/fast_plan.h"
@@ -331,6 +332,9 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   // The fast profile's faces in the Traversal layout (or Exact where the list is not in its
   // order): the Compact layout's walk took most of a format 4 file's opening.
   if (opt.profile == Profile::Fast) wo.face_layout = WriteOptions::FaceLayout::Traversal;
+  // What a game draws besides positions: written once, never part of a trial.
+  m.render = build_render_mesh(anim, m.faces, opt.attributes);
+  m.placement = anim.placement;
   *out = write_container(m, wo);
 
   if (!measure_decoded(*out, anim, &rep.error, error)) return false;

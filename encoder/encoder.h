@@ -8,6 +8,7 @@
 #include "encoder/curves/report.h"
 #include "encoder/io/frames.h"
 #include "encoder/metrics.h"
+#include "encoder/render_attributes.h"
 
 namespace dcurve {
 
@@ -83,6 +84,8 @@ struct EncodeOptions {
   // In-between rule recorded in the file (codec/common/model.h Inbetween): -1 the one that
   // best predicts held-out input frames (encoder/rate/inbetween_choice.h), else that rule.
   int inbetween = -1;
+  // Precision of the render vertices' static attributes (UVs, colours, normals).
+  AttributePrecision attributes;
   int threads = 0;            // 0: all hardware threads; output bytes never depend on it
   std::function<void(double)> progress;  // called with the fraction done in [0, 1]; may be empty
 };

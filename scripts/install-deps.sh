@@ -45,7 +45,7 @@ npm_ci() {
 }
 install_npm_packages() {
   npm_ci "$root/tests/interop" @gltf-transform/core gltf-validator
-  npm_ci "$root/web" three fzstd playwright-core
+  npm_ci "$root/web" three fzstd playwright-core typescript @types/three
 }
 
 if [ ${#missing[@]} -eq 0 ]; then

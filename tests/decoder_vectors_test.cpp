@@ -9,9 +9,13 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
+#include "codec/common/container_format.h"
 #include "codec/common/fast_residual.h"
 #include "codec/common/low_rank.h"
+#include "codec/common/render_mesh.h"
 #include "codec/common/residual.h"
 #include "codec/compress/container_writer.h"
 #include "codec/compress/faces_encoder.h"
@@ -167,6 +171,25 @@ std::vector<Vector> recipes() {
       encode_fast_residuals(fast_model, testing::grid(6, 10), {3, 0x14, 4, 1, 0x13, 4, 2, 0x14, 3, 0}, 4,
                             &prediction);
   v.push_back({"fast_model_chunked", fast_model, {}});
+  // Format 3.3: render vertices (copies of vertices 3 and 1 in the last two triangles) with
+  // texture coordinates and colours, and a placement (dcrv.md sections 19, 20).
+  Model render = small_model(4);
+  render.render.source = {0, 1, 2, 3, 4, 5, 3, 1};
+  render.render.corners = {0, 1, 2, 2, 1, 3, 6, 7, 4, 4, 5, 6};
+  RenderAttribute uv{AttributeSemantic::TexCoord0, 2, 10, {0.f, -1.f}, {1.f, 1.f}, {}};
+  RenderAttribute color{AttributeSemantic::Color0, 4, 8, {0.f, 0.f, 0.f, 1.f}, {1.f, 0.5f, 1.f, 1.f}, {}};
+  for (uint16_t r = 0; r < 8; ++r) {
+    uv.q.insert(uv.q.end(), {uint16_t(100 * r), uint16_t(1023 - 50 * r)});
+    color.q.insert(color.q.end(), {uint16_t(30 * r), uint16_t(255 - r), uint16_t(r * r), 0});
+  }
+  render.render.attributes = {uv, color};
+  render.placement.start_time = 0.5;
+  render.placement.has_matrix = true;
+  render.placement.matrix[12] = 2.0;
+  render.placement.matrix[0] = 0.5;
+  render.placement.mesh_name = "mesh";
+  render.placement.node_name = "node";
+  v.push_back({"render_placement", render, {}});
   return v;
 }
 
@@ -290,6 +313,7 @@ void expect_older_files_decode(const std::string& version, uint16_t minor) {
     if (v.model.meta.inbetween != Inbetween::Linear) continue;  // recipes of format 3.2
     const std::vector<uint8_t>& payload = v.model.residual.payload;
     if (!payload.empty() && payload[0] == fast_residual::kPayloadVersion) continue;  // format 4
+    if (!v.model.render.empty() || !v.model.placement.empty()) continue;             // format 3.3
     const std::string path = dir() + version + "/" + v.name + ".dcrv";
     const std::vector<uint8_t> bytes = read_bytes(path);
     ASSERT_GE(bytes.size(), 8u) << "missing test vector " << path;
@@ -300,6 +324,37 @@ void expect_older_files_decode(const std::string& version, uint16_t minor) {
     ASSERT_TRUE(d) << path << ": " << err;
     EXPECT_EQ(d->interpolation(), Interpolation::Linear) << path;
     expect_decodes_as_expected(path, v.name);
+  }
+}
+
+// The render vector's REND and PLAC decode to the recipe's values (dcrv.md sections 19, 20),
+// and a 3.3 file keeps its version.
+TEST(TestVectors, RenderVerticesAndPlacementDecodeAsWritten) {
+  for (const Vector& v : recipes()) {
+    if (v.model.render.empty()) continue;
+    const std::string path = dir() + v.name + ".dcrv";
+    const std::vector<uint8_t> bytes = read_bytes(path);
+    ASSERT_GE(bytes.size(), 8u) << "missing test vector " << path;
+    EXPECT_EQ(bytes[6] | bytes[7] << 8, kRenderFormatVersionMinor);
+    std::string err;
+    auto d = Decoder::open_file(path, &err);
+    ASSERT_TRUE(d) << path << ": " << err;
+    const RenderMesh& r = v.model.render;
+    ASSERT_EQ(d->render_vertex_count(), r.source.size());
+    EXPECT_EQ(std::vector<uint32_t>(d->render_source(), d->render_source() + r.source.size()), r.source);
+    EXPECT_EQ(std::vector<uint32_t>(d->render_faces(), d->render_faces() + r.corners.size()), r.corners);
+    for (const RenderAttribute& a : r.attributes) {
+      const Attribute which = Attribute(int(a.semantic));
+      ASSERT_EQ(d->attribute_components(which), a.components);
+      for (size_t i = 0; i < a.q.size(); ++i)
+        EXPECT_EQ(d->attribute(which)[i], a.value(i / a.components, uint32_t(i % a.components))) << v.name << " " << i;
+    }
+    double matrix[16];
+    EXPECT_EQ(d->world_matrix(matrix), v.model.placement.has_matrix);
+    EXPECT_EQ(std::vector<double>(matrix, matrix + 16), std::vector<double>(v.model.placement.matrix, v.model.placement.matrix + 16));
+    EXPECT_EQ(d->start_time(), v.model.placement.start_time);
+    EXPECT_EQ(d->mesh_name(), v.model.placement.mesh_name);
+    EXPECT_EQ(d->node_name(), v.model.placement.node_name);
   }
 }
 

@@ -26,7 +26,7 @@ bool write_cache(const std::string& path, const Animation& anim, double fps) {
   std::string err;
   if (!out.open(path, true, &err)) return false;
   PointCacheWriter w(kind, &out, anim.vertex_count);
-  bool ok = w.write_header(uint32_t(anim.frames.size()), fps, &err);
+  bool ok = w.write_header(uint32_t(anim.frames.size()), fps, 0.0, &err);
   for (const auto& frame : anim.frames) ok = ok && w.write_frame(frame.data(), &err);
   return ok && out.commit(&err);
 }

@@ -19,6 +19,11 @@ constexpr uint16_t kFormatVersionMinor = 2;
 // of the small profile stay 3.2; a reader reads both majors.
 constexpr uint16_t kFastFormatVersionMajor = 4;
 constexpr uint16_t kFastFormatVersionMinor = 0;
+// Minor 3 (format 3.3) and 1 (4.1): optional REND and PLAC sections (render vertices and
+// their attributes; placement, start time, names). Written exactly for files that hold them,
+// so other files keep their version; older readers skip both and decode the same positions.
+constexpr uint16_t kRenderFormatVersionMinor = 3;
+constexpr uint16_t kFastRenderFormatVersionMinor = 1;
 // Required feature (file_flags bit 0, since 3.1): residual payloads may be of version 4 (zero
 // block flags), which a 3.0 reader cannot decode. The writer always sets it.
 constexpr uint32_t kFileFlagZeroBlocks = 1u;
@@ -59,6 +64,8 @@ const uint32_t kCurves = fourcc("CURV");
 const uint32_t kSegments = fourcc("SEGS");
 const uint32_t kLowRank = fourcc("LRNK");
 const uint32_t kResidual = fourcc("RESI");
+const uint32_t kRender = fourcc("REND");
+const uint32_t kPlacement = fourcc("PLAC");
 
 // Curve parameters u as 16-bit fixed point (CURV section).
 inline uint16_t u_to_fixed(float u) { return uint16_t(std::lround(std::clamp(u, 0.f, 1.f) * 65535.f)); }

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "codec/common/render_mesh.h"
+
 namespace dcurve {
 
 // Which closed-form family a curve's motion uses (codec/common/basis.h defines the functions).
@@ -125,6 +127,8 @@ struct Model {
   std::vector<Segment> segments;
   ResidualLayer residual;
   LowRankModel low_rank;
+  RenderMesh render;     // empty: render vertices are the vertices, no attributes (REND)
+  Placement placement;   // (PLAC)
 };
 
 }  // namespace dcurve

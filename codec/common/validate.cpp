@@ -4,6 +4,7 @@
 #include "codec/common/container_format.h"
 #include "codec/common/error.h"
 #include "codec/common/low_rank.h"
+#include "codec/common/render_mesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,46 @@
 namespace dcurve {
 namespace {
 bool finite_positive(double v) { return std::isfinite(v) && v > 0; }
+
+bool validate_attribute(const RenderAttribute& a, size_t render_count, std::string* error) {
+  if (uint8_t(a.semantic) >= kAttributeSemanticCount || !attribute_components_allowed(a.semantic, a.components) ||
+      a.bits < 1 || a.bits > kMaxAttributeBits)
+    return fail(error, "render attribute has an unknown semantic, component count or precision");
+  if (a.q.size() != render_count * a.components) return fail(error, "render attribute does not cover every render vertex");
+  for (uint32_t c = 0; c < a.components; ++c)
+    if (!std::isfinite(a.lo[c]) || !std::isfinite(a.hi[c]) || a.lo[c] > a.hi[c])
+      return fail(error, "render attribute range is not finite and ordered");
+  for (uint32_t q : a.q)
+    if (q >> a.bits) return fail(error, "render attribute value outside its precision");
+  return true;
+}
+
+// Render vertices (REND): vertices in first-use order, corners that show their own vertex, one
+// attribute per semantic in ascending order.
+bool validate_render(const Model& m, std::string* error) {
+  const RenderMesh& r = m.render;
+  if (r.empty()) {
+    if (!r.corners.empty() || !r.attributes.empty()) return fail(error, "render attributes without render vertices");
+    return true;
+  }
+  std::vector<uint32_t> ordinals;
+  if (m.faces.empty() || !render_source_in_first_use_order(r.source, m.meta.vertex_count) ||
+      !render_corner_ordinals(m.faces, r, m.meta.vertex_count, &ordinals))
+    return fail(error, "render vertices do not show every vertex in first-use order, or a corner shows another vertex");
+  for (size_t i = 0; i < r.attributes.size(); ++i) {
+    if (i > 0 && uint8_t(r.attributes[i].semantic) <= uint8_t(r.attributes[i - 1].semantic))
+      return fail(error, "render attributes are not in ascending semantic order");
+    if (!validate_attribute(r.attributes[i], r.source.size(), error)) return false;
+  }
+  return true;
+}
+
+bool validate_placement(const Placement& p, std::string* error) {
+  if (!std::isfinite(p.start_time)) return fail(error, "start time is not finite");
+  for (double x : p.matrix)
+    if (!std::isfinite(x)) return fail(error, "placement matrix is not finite");
+  return true;
+}
 }  // namespace
 
 bool validate_model(const Model& m, std::string* error) {
@@ -122,7 +163,7 @@ bool validate_model(const Model& m, std::string* error) {
       if (std::fabs(o) + m.residual.step * 2147483648.0 > double(std::numeric_limits<float>::max()))
         return fail(error, "residual grid would place grid values outside the float range");
   }
-  return true;
+  return validate_render(m, error) && validate_placement(m.placement, error);
 }
 
 }  // namespace dcurve

@@ -12,6 +12,7 @@
 #include "codec/common/residual.h"
 #include "codec/compress/faces_encoder.h"
 #include "codec/compress/low_rank_writer.h"
+#include "codec/compress/render_writer.h"
 #include "codec/decompress/faces_decoder.h"
 #include "codec/decompress/residual_decoder.h"
 
@@ -160,14 +161,22 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
     index_bytes = residual_index_bytes(model);
     sections.emplace_back(kResidual, residual_bytes(model, index_bytes));
   }
+  // REND numbers render vertices over the stored faces: without them it has no meaning.
+  const bool render = !model.render.empty() && options.connectivity && !model.faces.empty();
+  if (render) sections.emplace_back(kRender, render_bytes(model));
+  if (!model.placement.empty()) sections.emplace_back(kPlacement, placement_bytes(model));
 
   ByteWriter body;
-  for (const auto& [tag, raw] : sections) put_section(body, tag, tag != kFaces, raw, options.zstd_level);
+  // Positions decode without FACE, REND and PLAC: a reader that skips them is still right.
+  for (const auto& [tag, raw] : sections)
+    put_section(body, tag, tag != kFaces && tag != kRender && tag != kPlacement, raw, options.zstd_level);
   ByteWriter out;
   out.bytes(kMagic, 4);
   const bool fast = !model.residual.payload.empty() && model.residual.payload[0] == fast_residual::kPayloadVersion;
   out.u16(fast ? kFastFormatVersionMajor : kFormatVersionMajor);
-  out.u16(fast ? kFastFormatVersionMinor : kFormatVersionMinor);
+  const bool scene = render || !model.placement.empty();
+  out.u16(fast ? (scene ? kFastRenderFormatVersionMinor : kFastFormatVersionMinor)
+               : (scene ? kRenderFormatVersionMinor : kFormatVersionMinor));
   out.u32(kFileFlagZeroBlocks | (model.meta.inbetween != Inbetween::Linear ? kFileFlagInbetween : 0));
   out.u32(uint32_t(sections.size()));
   out.u64(kHeaderBytes + body.size());

@@ -15,6 +15,7 @@
 #include "codec/common/validate.h"
 #include "codec/decompress/faces_decoder.h"
 #include "codec/decompress/low_rank_reader.h"
+#include "codec/decompress/render_reader.h"
 #include "codec/decompress/residual_decoder.h"
 
 namespace dcurve {
@@ -212,9 +213,9 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
   ByteReader r(data, size_t(h.head_bytes));
   r.take(kHeaderBytes);
 
-  constexpr int kKnown = 6;
-  bool seen[kKnown] = {false, false, false, false, false, false};
-  const uint32_t order[kKnown] = {kMeta, kFaces, kCurves, kSegments, kLowRank, kResidual};
+  constexpr int kKnown = 8;
+  bool seen[kKnown] = {};
+  const uint32_t order[kKnown] = {kMeta, kFaces, kCurves, kSegments, kLowRank, kResidual, kRender, kPlacement};
   std::vector<uint8_t> raw;
   for (uint32_t i = 0; i < h.section_count; ++i) {
     const size_t header_at = r.position();
@@ -280,6 +281,8 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
     else if (tag == kSegments) ok = parse_segments(s, model);
     else if (tag == kLowRank) ok = seen[0] && parse_low_rank(s, model);
     else if (tag == kResidual) ok = parse_residual(s, model);
+    else if (tag == kRender) ok = seen[0] && parse_render(s, model);
+    else if (tag == kPlacement) ok = parse_placement(s, model);
     if (!ok || s.remaining() != 0) return fail(error, "section " + name + " is malformed");
   }
   if (r.remaining() != 0) return fail(error, "the sections end before the header's chunk data offset");

@@ -71,16 +71,35 @@ size_t index_bytes(int component_type) {
   }
 }
 
+// Bytes of one component of an attribute: FLOAT, or the normalized unsigned integers glTF
+// allows for texture coordinates and colours; 0 for other types.
+size_t attribute_component_bytes(const tinygltf::Accessor& a, bool allow_normalized = true) {
+  if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return 4;
+  if (!a.normalized || !allow_normalized) return 0;
+  if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return 1;
+  if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) return 2;
+  return 0;
+}
+
+// `components` values of one element at p, as floats (normalized integers scaled to [0, 1]).
+void load_element(const uint8_t* p, int component_type, int components, float* out) {
+  for (int c = 0; c < components; ++c) {
+    if (component_type == TINYGLTF_COMPONENT_TYPE_FLOAT) std::memcpy(out + c, p + 4 * c, 4);
+    else if (component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) out[c] = float(p[c]) / 255.0f;
+    else out[c] = float(load_index(p + 2 * c, component_type)) / 65535.0f;
+  }
+}
+
 // Replaces the elements the sparse part lists (glTF 2.0 section 3.6.2.3).
 bool apply_sparse(const tinygltf::Model& model, const tinygltf::Accessor& a, int components, const std::string& what,
                   std::vector<float>* out, std::string* error) {
   const auto& s = a.sparse;
-  const size_t ib = index_bytes(s.indices.componentType);
+  const size_t ib = index_bytes(s.indices.componentType), element = attribute_component_bytes(a) * components;
   if (s.count <= 0 || size_t(s.count) > a.count || ib == 0)
     return fail(error, what + ": sparse accessor with a count or index type dcurve cannot read");
   Span idx, val;
   if (!locate(model, s.indices.bufferView, size_t(s.indices.byteOffset), size_t(s.count), ib, 0, what + " (sparse indices)", &idx, error) ||
-      !locate(model, s.values.bufferView, size_t(s.values.byteOffset), size_t(s.count), 4 * size_t(components), 0,
+      !locate(model, s.values.bufferView, size_t(s.values.byteOffset), size_t(s.count), element, 0,
               what + " (sparse values)", &val, error))
     return false;
   int64_t previous = -1;
@@ -89,7 +108,7 @@ bool apply_sparse(const tinygltf::Model& model, const tinygltf::Accessor& a, int
     if (at >= a.count || int64_t(at) <= previous)
       return fail(error, what + ": sparse index " + std::to_string(at) + " is out of range or not increasing");
     previous = at;
-    std::memcpy(out->data() + size_t(at) * components, val.data + size_t(i) * 4 * components, 4 * size_t(components));
+    load_element(val.data + size_t(i) * element, a.componentType, components, out->data() + size_t(at) * components);
   }
   return true;
 }
@@ -106,13 +125,16 @@ const tinygltf::Accessor* find_accessor(const tinygltf::Model& model, int index,
 }  // namespace
 
 bool read_float_accessor(const tinygltf::Model& model, int index, int components, const std::string& what,
-                         MemoryBudget* budget, std::vector<float>* out, std::string* error) {
+                         MemoryBudget* budget, std::vector<float>* out, std::string* error, bool allow_normalized) {
+  static const char* const kTypeNames[] = {"", "SCALAR", "VEC2", "VEC3", "VEC4"};
+  static const int kTypes[] = {0, TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC2, TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4};
   const tinygltf::Accessor* a = find_accessor(model, index, what, error);
   if (!a) return false;
-  const int type = components == 1 ? TINYGLTF_TYPE_SCALAR : TINYGLTF_TYPE_VEC3;
-  if (a->type != type || a->componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
-    return fail(error, what + ": accessor " + std::to_string(index) + " is not " + (components == 1 ? "SCALAR" : "VEC3") +
-                           " FLOAT (quantized data, e.g. KHR_mesh_quantization, is not read)");
+  if (components < 1 || components > 4) return fail(error, what + ": unsupported element size");
+  const size_t component_bytes = attribute_component_bytes(*a, allow_normalized);
+  if (a->type != kTypes[components] || component_bytes == 0)
+    return fail(error, what + ": accessor " + std::to_string(index) + " is not " + kTypeNames[components] +
+                           (allow_normalized ? " FLOAT or normalized unsigned" : " FLOAT") + " (quantized data, e.g. KHR_mesh_quantization, is not read)");
   if (a->bufferView < 0 && a->count > kMaxViewlessElements)
     return fail(error, what + ": accessor " + std::to_string(index) + " has no data and " + std::to_string(a->count) + " elements");
   if (a->bufferView >= 0 && size_t(a->bufferView) < model.bufferViews.size() &&
@@ -122,10 +144,11 @@ bool read_float_accessor(const tinygltf::Model& model, int index, int components
   out->assign(a->count * components, 0.0f);
   if (a->bufferView >= 0) {  // without a view, the values are zeros (then sparse)
     Span span;
-    if (!locate(model, a->bufferView, a->byteOffset, a->count, 4 * size_t(components), view_stride(model, a->bufferView),
-                what, &span, error))
+    if (!locate(model, a->bufferView, a->byteOffset, a->count, component_bytes * size_t(components),
+                view_stride(model, a->bufferView), what, &span, error))
       return false;
-    for (size_t i = 0; i < a->count; ++i) std::memcpy(out->data() + i * components, span.data + i * span.stride, 4 * size_t(components));
+    for (size_t i = 0; i < a->count; ++i)
+      load_element(span.data + i * span.stride, a->componentType, components, out->data() + i * components);
   }
   return !a->sparse.isSparse || apply_sparse(model, *a, components, what, out, error);
 }

@@ -3,6 +3,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,7 +13,9 @@
 #include "encoder/io/frame_times.h"
 #include "encoder/io/gltf_accessor.h"
 #include "encoder/io/gltf_load.h"
+#include "encoder/io/gltf_placement.h"
 #include "encoder/io/quoted_text.h"
+#include "encoder/io/weld.h"
 
 namespace dcurve {
 namespace {
@@ -69,7 +72,29 @@ struct Geometry {
   std::vector<float> base;
   std::vector<uint32_t> faces;
   std::vector<std::vector<float>> targets;
+  std::vector<AnimationRender::Attribute> attributes;
 };
+
+// The static attributes dcurve keeps (codec/common/render_mesh.h); colours may be VEC3 or VEC4.
+bool read_attributes(const tinygltf::Model& model, const tinygltf::Primitive& p, MemoryBudget* budget, Geometry* g,
+                     std::string* error) {
+  for (uint8_t s = 0; s < kAttributeSemanticCount; ++s) {
+    const AttributeSemantic semantic = AttributeSemantic(s);
+    auto it = p.attributes.find(attribute_gltf_name(semantic));
+    if (it == p.attributes.end()) continue;
+    uint32_t components = semantic == AttributeSemantic::Normal ? 3 : 2;
+    if (semantic == AttributeSemantic::Color0 && it->second >= 0 && size_t(it->second) < model.accessors.size())
+      components = model.accessors[it->second].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    AnimationRender::Attribute a{semantic, components, {}};
+    if (!read_float_accessor(model, it->second, int(components), it->first, budget, &a.values, error, true)) return false;
+    if (a.values.size() != g->base.size() / 3 * components)
+      return fail(error, it->first + ": vertex count differs from POSITION");
+    for (float x : a.values)
+      if (!std::isfinite(x)) return fail(error, it->first + ": a value is not finite");
+    g->attributes.push_back(std::move(a));
+  }
+  return true;
+}
 
 bool read_faces(const tinygltf::Model& model, const tinygltf::Primitive& p, uint32_t vertices, MemoryBudget* budget,
                 std::vector<uint32_t>* faces, std::string* error) {
@@ -115,20 +140,26 @@ bool read_geometry(const tinygltf::Model& model, const tinygltf::Mesh& mesh, Mem
   if (g->base.size() / 3 > UINT32_MAX) return fail(error, name + " has more than 2^32 vertices");
   if (!read_faces(model, p, uint32_t(g->base.size() / 3), budget, &g->faces, error)) return false;
   if (p.targets.empty()) return fail(error, name + " has no morph targets (dcurve reads morph-target animation)");
-  return read_targets(model, p, budget, g, error);
+  return read_targets(model, p, budget, g, error) && read_attributes(model, p, budget, g, error);
 }
 
-// The one sampler that animates the weights of a node showing mesh `mesh`.
-bool find_weights_sampler(const tinygltf::Model& model, int mesh, const tinygltf::AnimationSampler** sampler,
-                          std::string* error) {
+// The one channel that animates the weights of a node showing mesh `mesh`.
+struct WeightsChannel {
+  const tinygltf::AnimationSampler* sampler = nullptr;
+  int node = -1, animation = -1, channel = -1;
+};
+
+bool find_weights_sampler(const tinygltf::Model& model, int mesh, WeightsChannel* out, std::string* error) {
   int found = 0;
-  for (const auto& anim : model.animations)
-    for (const auto& ch : anim.channels) {
+  for (size_t a = 0; a < model.animations.size(); ++a)
+    for (size_t c = 0; c < model.animations[a].channels.size(); ++c) {
+      const tinygltf::Animation& anim = model.animations[a];
+      const tinygltf::AnimationChannel& ch = anim.channels[c];
       const bool ours = ch.target_node >= 0 && size_t(ch.target_node) < model.nodes.size() &&
                         model.nodes[ch.target_node].mesh == mesh && ch.target_path == "weights";
       if (!ours) continue;
       if (ch.sampler < 0 || size_t(ch.sampler) >= anim.samplers.size()) return fail(error, "animation channel with no sampler");
-      *sampler = &anim.samplers[ch.sampler];
+      *out = {&anim.samplers[ch.sampler], ch.target_node, int(a), int(c)};
       ++found;
     }
   if (found == 0)
@@ -208,18 +239,24 @@ bool read_model_animation(const tinygltf::Model& model, int mesh_index, MemoryBu
                           std::string* error) {
   int mesh = 0;
   Geometry g;
-  const tinygltf::AnimationSampler* sampler = nullptr;
+  WeightsChannel channel;
   std::vector<float> times, weights;
   if (!check_extensions(model, error) || !choose_mesh(model, mesh_index, &mesh, error) ||
-      !find_weights_sampler(model, mesh, &sampler, error) ||
-      !check_declared_size(model, model.meshes[mesh], *sampler, *budget, error) ||
+      !find_weights_sampler(model, mesh, &channel, error) ||
+      !check_declared_size(model, model.meshes[mesh], *channel.sampler, *budget, error) ||
       !read_geometry(model, model.meshes[mesh], budget, &g, error) ||
-      !read_keys(model, *sampler, g.targets.size(), budget, &times, &weights, error) ||
+      !read_keys(model, *channel.sampler, g.targets.size(), budget, &times, &weights, error) ||
       !key_frame_rate(times, &anim->frame_rate, error))
     return false;
   anim->vertex_count = uint32_t(g.base.size() / 3);
   anim->faces = std::move(g.faces);
-  return blend_frames(g, weights, times.size(), budget, anim, error) && validate_animation(*anim, error);
+  anim->placement = gltf_placement(model, channel.node, mesh);
+  anim->placement.start_time = times.empty() ? 0.0 : double(times[0]);
+  anim->notes = gltf_dropped_animations(model, channel.animation, channel.channel);
+  if (!blend_frames(g, weights, times.size(), budget, anim, error)) return false;
+  // Frames first: welding compares every frame; a degenerate triangle it leaves is dropped.
+  weld_copies(anim, std::move(g.attributes));
+  return validate_animation(*anim, error);
 }
 
 }  // namespace

@@ -19,6 +19,8 @@ constexpr uint64_t kMaxGltfBytes = uint64_t(1) << 30;
 constexpr double kLongestNumber = -2.2250738585072014e-308;
 constexpr size_t kFlushBytes = size_t(3) << 18;  // a multiple of 3: base64 flushes whole groups
 constexpr char kDataUri[] = "data:application/octet-stream;base64,";
+// Stands for the morph targets' text in the JSON tree until it is spliced in.
+constexpr char kTargetsMark[] = "dcurve-morph-targets";
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963, kFloat = 5126, kUnsignedInt = 5125;
 
 uint64_t base64_bytes(uint64_t bytes) { return (bytes + 2) / 3 * 4; }
@@ -39,22 +41,23 @@ void store_u32(uint8_t* p, uint32_t v) { std::memcpy(p, &v, 4); }  // little-end
 
 // The byte layout of the one buffer: where each part starts.
 struct Layout {
-  uint64_t indices = 0, base, targets, times, weights, end;
-  Layout(uint32_t vertices, size_t face_ids, uint32_t frame_count) {
-    const uint64_t frames = frame_count ? frame_count : 1;
-    base = 4 * uint64_t(face_ids);
-    targets = base + 12 * uint64_t(vertices);
-    times = targets + 12 * uint64_t(vertices) * (frames - 1);
+  uint64_t indices = 0, statics, base, targets, times, weights, end;
+  Layout(uint32_t vertices, size_t face_ids, uint32_t frame_count, uint64_t static_bytes, bool normals) {
+    const uint64_t frames = frame_count ? frame_count : 1, frame_bytes = (normals ? 24 : 12) * uint64_t(vertices);
+    statics = 4 * uint64_t(face_ids);
+    base = statics + static_bytes;
+    targets = base + frame_bytes;
+    times = targets + frame_bytes * (frames - 1);
     weights = times + (frames > 1 ? 4 * frames : 0);  // one frame: no animation
     end = weights + 4 * uint64_t(frames) * (frames - 1);
   }
 };
 
-Json view(uint64_t offset, uint64_t length, int target) {
+Json view(uint64_t offset, uint64_t length, int target, uint32_t stride = 12) {
   Json v = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}};
   // Vertex attributes state their stride: the validator requires it when several accessors
   // (the morph targets) share a view.
-  if (target == kArrayBuffer) v["byteStride"] = 12;
+  if (target == kArrayBuffer) v["byteStride"] = stride;
   if (target) v["target"] = target;
   return v;
 }
@@ -74,66 +77,138 @@ Json position_accessor(int view, uint64_t offset, uint32_t count, const std::arr
   return a;
 }
 
+const char* const kTypeNames[] = {"", "SCALAR", "VEC2", "VEC3", "VEC4"};
+
+// The static attributes' views and accessors, named in the primitive.
+void add_static_attributes(const GltfScene& scene, uint64_t offset, uint32_t vertices, Json* views, Json* accessors,
+                           Json* primitive) {
+  for (const GltfScene::Attribute& a : scene.attributes) {
+    const uint64_t bytes = 4 * uint64_t(a.components) * vertices;
+    views->push_back(view(offset, bytes, kArrayBuffer, 4 * a.components));
+    accessors->push_back(accessor(int(views->size() - 1), 0, vertices, kTypeNames[a.components], kFloat));
+    (*primitive)["attributes"][a.name] = accessors->size() - 1;
+    offset += bytes;
+  }
+}
+
+// The node showing the mesh: the input's name and world transform.
+Json mesh_node(const Placement& p) {
+  Json node = {{"mesh", 0}};
+  if (!p.node_name.empty()) node["name"] = p.node_name;
+  if (p.has_matrix) node["matrix"] = std::vector<double>(p.matrix, p.matrix + 16);
+  return node;
+}
+
 }  // namespace
 
 GltfWriter::GltfWriter(uint32_t vertex_count, std::vector<uint32_t> faces, uint32_t frame_count, double frame_rate,
-                       bool binary)
+                       bool binary, GltfScene scene)
     : vertex_count_(vertex_count), frame_count_(frame_count), frame_rate_(frame_rate > 0 ? frame_rate : 30.0),
-      binary_(binary), faces_(std::move(faces)) {}
+      binary_(binary), faces_(std::move(faces)), scene_(std::move(scene)) {}
 
-uint64_t GltfWriter::buffer_bytes() const { return Layout(vertex_count_, faces_.size(), frame_count_).end; }
+uint64_t GltfWriter::static_bytes() const {
+  uint64_t bytes = 0;
+  for (const GltfScene::Attribute& a : scene_.attributes) bytes += 4 * uint64_t(a.components) * vertex_count_;
+  return bytes;
+}
 
-// Accessors and views in the buffer's order: indices, frame 0, the targets, times, weights.
+uint64_t GltfWriter::buffer_bytes() const {
+  return Layout(vertex_count_, faces_.size(), frame_count_, static_bytes(), scene_.normals).end;
+}
+
+// The morph targets' accessors and the primitive's list of them, as JSON text: thousands of
+// frames as a JSON tree would take many times their text, and the writer's memory must not
+// grow with the clip beyond a few numbers per frame.
+struct TargetText {
+  std::string accessors, targets;
+};
+
+TargetText GltfWriter::target_text(int view_index, uint64_t first_accessor, bool placeholders) const {
+  const uint64_t position_bytes = 12 * uint64_t(vertex_count_);
+  const uint64_t frame_bytes = scene_.normals ? 2 * position_bytes : position_bytes;
+  TargetText text;
+  uint64_t next = first_accessor;
+  for (uint32_t t = 1; t < frame_count_; ++t) {
+    const auto b = t < bounds_.size() ? bounds_[t] : std::array<float, 6>{};
+    const char* comma = t > 1 ? "," : "";
+    text.accessors += comma + position_accessor(view_index, (t - 1) * frame_bytes, vertex_count_, b, placeholders).dump();
+    text.targets += std::string(comma) + "{\"POSITION\":" + std::to_string(next++);
+    if (scene_.normals) {
+      text.accessors += "," + accessor(view_index, (t - 1) * frame_bytes + position_bytes, vertex_count_, "VEC3", kFloat).dump();
+      text.targets += ",\"NORMAL\":" + std::to_string(next++);
+    }
+    text.targets += "}";
+  }
+  return text;
+}
+
+// Accessors and views in the buffer's order: indices, static attributes, frame 0, the targets,
+// times, weights (the targets' accessors last, spliced in as text).
 std::string GltfWriter::json(bool placeholders) const {
-  const Layout at(vertex_count_, faces_.size(), frame_count_);
-  const uint64_t frame_bytes = 12 * uint64_t(vertex_count_);
+  const Layout at(vertex_count_, faces_.size(), frame_count_, static_bytes(), scene_.normals);
+  const uint64_t position_bytes = 12 * uint64_t(vertex_count_);
+  const uint64_t frame_bytes = scene_.normals ? 2 * position_bytes : position_bytes;
   Json views = Json::array(), accessors = Json::array();
   Json primitive = {{"attributes", Json::object()}, {"mode", faces_.empty() ? 0 : 4}};
   if (!faces_.empty()) {
-    views.push_back(view(at.indices, at.base - at.indices, kElementArrayBuffer));
+    views.push_back(view(at.indices, at.statics - at.indices, kElementArrayBuffer));
     accessors.push_back(accessor(int(views.size() - 1), 0, faces_.size(), "SCALAR", kUnsignedInt));
     primitive["indices"] = accessors.size() - 1;
   }
+  add_static_attributes(scene_, at.statics, vertex_count_, &views, &accessors, &primitive);
   views.push_back(view(at.base, frame_bytes, kArrayBuffer));
   accessors.push_back(position_accessor(int(views.size() - 1), 0, vertex_count_, bounds_.empty() ? std::array<float, 6>{} : bounds_[0], placeholders));
   primitive["attributes"]["POSITION"] = accessors.size() - 1;
-  Json mesh = {{"name", "dcurve"}};
+  if (scene_.normals) {
+    accessors.push_back(accessor(int(views.size() - 1), position_bytes, vertex_count_, "VEC3", kFloat));
+    primitive["attributes"]["NORMAL"] = accessors.size() - 1;
+  }
+  Json mesh = {{"name", scene_.placement.mesh_name.empty() ? "dcurve" : scene_.placement.mesh_name}};
   Json doc = {{"asset", {{"version", "2.0"}, {"generator", "dcurve"}}}};
+  TargetText targets;
   if (frame_count_ > 1) {
-    views.push_back(view(at.targets, at.times - at.targets, kArrayBuffer));
-    const int tv = int(views.size() - 1);
-    primitive["targets"] = Json::array();
-    for (uint32_t t = 1; t < frame_count_; ++t) {
-      const auto b = t < bounds_.size() ? bounds_[t] : std::array<float, 6>{};
-      accessors.push_back(position_accessor(tv, (t - 1) * frame_bytes, vertex_count_, b, placeholders));
-      primitive["targets"].push_back({{"POSITION", accessors.size() - 1}});
-    }
-    mesh["weights"] = std::vector<double>(frame_count_ - 1, 0.0);
-    // The weights animation: key i at i / fps turns target i - 1 fully on (key 0: none).
     views.push_back(view(at.times, at.weights - at.times, 0));
     Json times = accessor(int(views.size() - 1), 0, frame_count_, "SCALAR", kFloat);
-    times["min"] = {placeholders ? kLongestNumber : 0.0};
-    times["max"] = {placeholders ? kLongestNumber : double(float((frame_count_ - 1) / frame_rate_))};
+    times["min"] = {placeholders ? kLongestNumber : double(key_time(0))};
+    times["max"] = {placeholders ? kLongestNumber : double(key_time(frame_count_ - 1))};
     accessors.push_back(times);
     views.push_back(view(at.weights, at.end - at.weights, 0));
     accessors.push_back(accessor(int(views.size() - 1), 0, uint64_t(frame_count_) * (frame_count_ - 1), "SCALAR", kFloat));
+    // The weights animation: key i turns target i - 1 fully on (key 0: none).
     Json sampler = {{"input", accessors.size() - 2}, {"output", accessors.size() - 1}, {"interpolation", "LINEAR"}};
     Json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
     doc["animations"] = Json::array({{{"name", "frames"}, {"samplers", {sampler}}, {"channels", {channel}}}});
+    mesh["weights"] = std::vector<double>(frame_count_ - 1, 0.0);
+    views.push_back(view(at.targets, at.times - at.targets, kArrayBuffer));
+    targets = target_text(int(views.size() - 1), accessors.size(), placeholders);
+    accessors.push_back(kTargetsMark);
+    primitive["targets"] = Json::array({kTargetsMark});
   }
   mesh["primitives"] = Json::array({primitive});
   doc["bufferViews"] = views;
   doc["accessors"] = accessors;
   doc["meshes"] = Json::array({mesh});
-  doc["nodes"] = Json::array({{{"mesh", 0}}});
+  doc["nodes"] = Json::array({mesh_node(scene_.placement)});
   doc["scenes"] = Json::array({{{"nodes", {0}}}});
   doc["scene"] = 0;
   if (binary_) doc["buffers"] = Json::array({{{"byteLength", at.end}}});
-  return doc.dump();
+  std::string text = doc.dump();
+  if (frame_count_ > 1) {  // located by their keys: a name from the input may spell the mark
+    const std::string mark = Json(kTargetsMark).dump(), in_primitive = "\"targets\":[" + mark + "]";
+    const size_t list = text.find(in_primitive);
+    text.replace(list, in_primitive.size(), "\"targets\":[" + targets.targets + "]");
+    text.replace(text.find(mark, text.find("\"accessors\":[")), mark.size(), targets.accessors);
+  }
+  return text;
 }
 
-uint64_t GltfWriter::file_bytes(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, bool binary) {
-  GltfWriter w(vertex_count, std::vector<uint32_t>(face_ids), frame_count, 30, binary);
+float GltfWriter::key_time(uint32_t frame) const {
+  return float(scene_.placement.start_time + frame / frame_rate_);
+}
+
+uint64_t GltfWriter::file_bytes(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, bool binary,
+                                const GltfScene& scene) {
+  GltfWriter w(vertex_count, std::vector<uint32_t>(face_ids), frame_count, 30, binary, scene);
   const uint64_t buffer = w.buffer_bytes();
   // Past the limit on the buffer alone: no need to build a JSON of millions of targets.
   if (buffer > kMaxGltfBytes) return binary ? buffer : base64_bytes(buffer);
@@ -145,8 +220,8 @@ uint64_t GltfWriter::file_bytes(uint32_t vertex_count, size_t face_ids, uint32_t
 }
 
 bool GltfWriter::check_size(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, bool binary,
-                            std::string* error) {
-  const uint64_t bytes = file_bytes(vertex_count, face_ids, frame_count, binary);
+                            std::string* error, const GltfScene& scene) {
+  const uint64_t bytes = file_bytes(vertex_count, face_ids, frame_count, binary, scene);
   if (bytes > kMaxGltfBytes)
     return fail(error, std::to_string(frame_count) + " frames of " + std::to_string(vertex_count) + " vertices need " +
                            std::to_string(bytes >> 20) + " MiB as glTF morph targets" +
@@ -157,7 +232,8 @@ bool GltfWriter::check_size(uint32_t vertex_count, size_t face_ids, uint32_t fra
 
 bool GltfWriter::open(const std::string& path, bool replace, std::string* error) {
   if (frame_count_ == 0) return fail(error, path + ": a glTF output needs at least one frame");
-  if (!check_size(vertex_count_, faces_.size(), frame_count_, binary_, error)) return fail(error, path + ": " + *error);
+  if (!check_size(vertex_count_, faces_.size(), frame_count_, binary_, error, scene_))
+    return fail(error, path + ": " + *error);
   if (!out_.open(path, replace, error)) return false;
   const uint64_t buffer = buffer_bytes();
   std::string head;
@@ -178,8 +254,10 @@ bool GltfWriter::open(const std::string& path, bool replace, std::string* error)
   } else {
     head = "{\"buffers\":[{\"byteLength\":" + std::to_string(buffer) + ",\"uri\":\"" + kDataUri;
   }
-  if (!out_.write(head.data(), head.size(), error)) return false;
-  return put(faces_.data(), 4 * faces_.size(), error);
+  if (!out_.write(head.data(), head.size(), error) || !put(faces_.data(), 4 * faces_.size(), error)) return false;
+  for (const GltfScene::Attribute& a : scene_.attributes)
+    if (!put(a.values.data(), 4 * a.values.size(), error)) return false;
+  return true;
 }
 
 bool GltfWriter::put(const void* data, size_t size, std::string* error) {
@@ -203,13 +281,14 @@ bool GltfWriter::flush(bool last, std::string* error) {
   return out_.write(text.data(), text.size(), error);
 }
 
-bool GltfWriter::add_frame(const float* xyz, std::string* error) {
+bool GltfWriter::add_frame(const float* xyz, std::string* error, const float* normals) {
   if (frames_added_ >= frame_count_) return fail(error, out_.path() + ": more frames than the glTF output declares");
   const size_t values = size_t(vertex_count_) * 3;
   std::vector<float> target(xyz, xyz + values);
+  if (scene_.normals) target.insert(target.end(), normals, normals + values);
   if (frames_added_++ == 0) base_ = target;
   else
-    for (size_t i = 0; i < values; ++i) target[i] -= base_[i];
+    for (size_t i = 0; i < target.size(); ++i) target[i] -= base_[i];
   std::array<float, 6> b{};
   for (size_t i = 0; i < values; ++i) {
     const int a = int(i % 3);
@@ -217,13 +296,13 @@ bool GltfWriter::add_frame(const float* xyz, std::string* error) {
     b[3 + a] = i < 3 ? target[i] : std::max(b[3 + a], target[i]);
   }
   bounds_.push_back(b);
-  return put(target.data(), 4 * values, error);
+  return put(target.data(), 4 * target.size(), error);
 }
 
 bool GltfWriter::write_animation_data(std::string* error) {
   if (frame_count_ < 2) return true;
   std::vector<float> row(frame_count_);
-  for (uint32_t i = 0; i < frame_count_; ++i) row[i] = float(i / frame_rate_);
+  for (uint32_t i = 0; i < frame_count_; ++i) row[i] = key_time(i);
   if (!put(row.data(), 4 * row.size(), error)) return false;
   row.assign(frame_count_ - 1, 0.0f);
   for (uint32_t i = 0; i < frame_count_; ++i) {  // key i: target i - 1 on

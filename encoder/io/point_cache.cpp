@@ -127,19 +127,19 @@ bool read_point_cache(const std::string& path, Animation* anim, PointCacheInfo* 
   return true;
 }
 
-bool PointCacheWriter::write_header(uint32_t frame_count, double frame_rate, std::string* error) {
+bool PointCacheWriter::write_header(uint32_t frame_count, double frame_rate, double start_time, std::string* error) {
   buffer_.clear();
   if (kind_ == PointCacheKind::Pc2) {
     buffer_.assign(kPc2Signature, kPc2Signature + 12);
     store_u32(&buffer_, 1, false);  // file version
     store_u32(&buffer_, vertex_count_, false);
-    store_f32(&buffer_, 0.0f, false);  // start frame
+    store_f32(&buffer_, float(start_time * frame_rate), false);  // start frame
     store_f32(&buffer_, 1.0f, false);  // sample step: every frame
     store_u32(&buffer_, frame_count, false);
   } else {
     store_u32(&buffer_, frame_count, true);
     store_u32(&buffer_, vertex_count_, true);
-    for (uint32_t f = 0; f < frame_count; ++f) store_f32(&buffer_, float(f / frame_rate), true);
+    for (uint32_t f = 0; f < frame_count; ++f) store_f32(&buffer_, float(start_time + f / frame_rate), true);
   }
   return out_->write(buffer_.data(), buffer_.size(), error);
 }

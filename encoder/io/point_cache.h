@@ -33,11 +33,12 @@ bool read_point_cache(const std::string& path, Animation* anim, PointCacheInfo* 
                       uint64_t max_memory = default_max_memory());
 
 // Writes a cache one frame at a time into an open OutputFile (the caller commits it). The
-// header needs the frame count up front.
+// header needs the frame count up front; start_time (seconds of the first frame) becomes
+// PC2's start frame at `frame_rate`, or MDD's first time.
 class PointCacheWriter {
  public:
   PointCacheWriter(PointCacheKind kind, OutputFile* out, uint32_t vertex_count) : kind_(kind), out_(out), vertex_count_(vertex_count) {}
-  bool write_header(uint32_t frame_count, double frame_rate, std::string* error);
+  bool write_header(uint32_t frame_count, double frame_rate, double start_time, std::string* error);
   bool write_frame(const float* xyz, std::string* error);
 
  private:

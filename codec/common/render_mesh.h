@@ -1,0 +1,70 @@
+// What a game draws besides the animated positions (format 3.3 / 4.1, sections REND and PLAC,
+// format_spec/dcrv.md sections 19 and 20): render vertices that split a position at UV or
+// normal seams, their static attributes, and where and when the animation sits in its scene.
+// Positions are coded once per source vertex (Model vertex), so seam copies never drift apart.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dcurve {
+
+// Attributes a render vertex carries, the glTF names' order (REND stores the number).
+enum class AttributeSemantic : uint8_t { TexCoord0 = 0, TexCoord1 = 1, Color0 = 2, Normal = 3 };
+constexpr uint8_t kAttributeSemanticCount = 4;
+constexpr uint8_t kMaxAttributeBits = 16;
+const char* attribute_gltf_name(AttributeSemantic s);  // "TEXCOORD_0", ...
+// Components a semantic may have: 2 for texture coordinates, 3 for normals, 3 or 4 for colours.
+bool attribute_components_allowed(AttributeSemantic s, uint32_t components);
+
+// One static attribute, uniformly quantized per component: value = lo + q * (hi - lo) / (2^bits - 1).
+struct RenderAttribute {
+  AttributeSemantic semantic = AttributeSemantic::TexCoord0;
+  uint8_t components = 2;
+  uint8_t bits = 14;
+  float lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
+  std::vector<uint16_t> q;  // render_count * components, each < 2^bits
+
+  float value(size_t render_vertex, uint32_t component) const {
+    const uint32_t top = (1u << bits) - 1;
+    return lo[component] + float(q[render_vertex * components + component]) * ((hi[component] - lo[component]) / float(top));
+  }
+};
+
+// Render vertices in the input's order: `source` maps each to the vertex whose position it
+// shows, `corners` gives the render vertex of each corner of Model::faces (triangles keep the
+// faces' order). Vertices are numbered in order of first appearance in `source` (so render
+// vertex 0 shows vertex 0, and a mesh without copies has source[r] == r); REND stores source
+// as "new" or a distance back, and each corner as which copy of its vertex it takes.
+struct RenderMesh {
+  std::vector<uint32_t> source;
+  std::vector<uint32_t> corners;
+  std::vector<RenderAttribute> attributes;
+  bool empty() const { return source.empty(); }
+};
+
+// Where the animation sits and when it starts, as the input said (PLAC).
+struct Placement {
+  double start_time = 0;  // seconds of frame 0 (a glTF first key, a cache's start frame / rate)
+  bool has_matrix = false;
+  double matrix[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // world transform, column-major
+  std::string mesh_name, node_name;
+  bool empty() const { return start_time == 0 && !has_matrix && mesh_name.empty() && node_name.empty(); }
+};
+
+// Whether `source` numbers the vertices 0..vertex_count-1 in order of first appearance.
+bool render_source_in_first_use_order(const std::vector<uint32_t>& source, uint32_t vertex_count);
+
+// The render vertices of each vertex in ascending order (offsets: vertex_count + 1 entries).
+void render_copies(const std::vector<uint32_t>& source, uint32_t vertex_count, std::vector<uint32_t>* offsets,
+                   std::vector<uint32_t>* copies);
+
+// Corner k takes copy ordinals[k] of vertex faces[k]. False when an ordinal has no copy.
+bool render_corners_from_ordinals(const std::vector<uint32_t>& faces, const std::vector<uint32_t>& source,
+                                  uint32_t vertex_count, const std::vector<uint32_t>& ordinals,
+                                  std::vector<uint32_t>* corners);
+// The inverse; false when a corner's render vertex does not show the corner's vertex.
+bool render_corner_ordinals(const std::vector<uint32_t>& faces, const RenderMesh& render, uint32_t vertex_count,
+                            std::vector<uint32_t>* ordinals);
+
+}  // namespace dcurve

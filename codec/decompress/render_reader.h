@@ -1,0 +1,15 @@
+// Reading the REND and PLAC sections' payloads, as codec/compress/render_writer.h wrote them.
+#pragma once
+#include "codec/common/bytes.h"
+#include "codec/common/model.h"
+
+namespace dcurve {
+
+// REND into model->render; needs META and FACE read first (false without faces). False on
+// any rejection of format_spec/dcrv.md section 16; never allocates more than the payload's
+// bytes can fill.
+bool parse_render(ByteReader& r, Model* model);
+// PLAC into model->placement (section 17).
+bool parse_placement(ByteReader& r, Model* model);
+
+}  // namespace dcurve
