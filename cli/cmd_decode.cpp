@@ -42,6 +42,21 @@ bool decode_times(const DecodeOpts& o, const Decoder& dec, std::vector<double>* 
   return true;
 }
 
+// One primitive per face group with its material; the materials' JSON and images as stored.
+void describe_materials(const Decoder& dec, GltfScene* scene) {
+  for (uint32_t g = 0; g < dec.group_count(); ++g) {
+    const Group group = dec.group(g);
+    scene->group_faces.push_back(group.face_count);
+    scene->group_materials.push_back(group.material);
+  }
+  scene->materials_json = dec.materials_json();
+  for (uint32_t i = 0; i < dec.image_count(); ++i) {
+    size_t size = 0;
+    const uint8_t* bytes = dec.image(i, &size);
+    scene->images.push_back({dec.image_mime_type(i), std::vector<uint8_t>(bytes, bytes + size)});
+  }
+}
+
 // glTF output draws render vertices: seam copies share their vertex's position, with the
 // file's UVs and colours, its placement, and normals per frame (smooth across UV seams).
 void describe_render_output(const Decoder& dec, OutputSpec* spec) {
@@ -52,7 +67,9 @@ void describe_render_output(const Decoder& dec, OutputSpec* spec) {
   scene.placement.node_name = dec.node_name();
   scene.normals = dec.face_count() > 0;
   spec->vertex_count = dec.render_vertex_count();
-  if (dec.render_faces()) spec->faces.assign(dec.render_faces(), dec.render_faces() + 3 * size_t(dec.face_count()));
+  const uint32_t* faces = dec.group_faces() ? dec.group_faces() : dec.render_faces();
+  if (faces) spec->faces.assign(faces, faces + 3 * size_t(dec.face_count()));
+  describe_materials(dec, &scene);
   for (Attribute a : {Attribute::TexCoord0, Attribute::TexCoord1, Attribute::Color0}) {
     const uint32_t n = dec.attribute_components(a);
     if (n == 0) continue;

@@ -78,8 +78,13 @@ nlohmann::json describe_render(const Model& m) {
   nlohmann::json attributes = nlohmann::json::array();
   for (const RenderAttribute& a : m.render.attributes)
     attributes.push_back({{"name", attribute_gltf_name(a.semantic)}, {"components", a.components}, {"bits", a.bits}});
+  nlohmann::json groups = nlohmann::json::array();
+  for (const FaceGroup& g : m.render.groups) groups.push_back({{"material", g.material}, {"name", g.name}});
   const Placement& p = m.placement;
-  return {{"render_vertices", m.render.empty() ? m.meta.vertex_count : uint32_t(m.render.source.size())},
+  return {{"groups", groups},
+          {"material_bytes", m.materials.json.size()},
+          {"images", m.materials.images.size()},
+          {"render_vertices", m.render.empty() ? m.meta.vertex_count : uint32_t(m.render.source.size())},
           {"attributes", attributes},
           {"start_time", p.start_time},
           {"matrix", p.has_matrix ? nlohmann::json(std::vector<double>(p.matrix, p.matrix + 16)) : nlohmann::json()},
@@ -199,6 +204,13 @@ void print_render(const nlohmann::json& r, uint32_t vertices) {
   if (r["render_vertices"].get<uint32_t>() != vertices || !attributes.empty())
     std::printf("  render vertices: %u (seam copies share their vertex's position); attributes: %s\n",
                 r["render_vertices"].get<uint32_t>(), attributes.empty() ? "none" : attributes.c_str());
+  if (!r["groups"].empty()) {
+    std::string names;
+    for (const auto& g : r["groups"])
+      names += (names.empty() ? "" : ", ") + ("\"" + printable(g["name"].get<std::string>()) + "\"");
+    std::printf("  %zu face groups (materials %s), %zu images\n", r["groups"].size(), names.c_str(),
+                r["images"].get<size_t>());
+  }
   if (!r["matrix"].is_null() || r["start_time"].get<double>() != 0 || !r["node_name"].get<std::string>().empty() ||
       !r["mesh_name"].get<std::string>().empty())
     std::printf("  placement: mesh \"%s\", node \"%s\", %s, first frame at %.6g s\n",

@@ -160,6 +160,27 @@ int dcurve_compute_render_normals(const dcurve_decoder* d, const float* xyz, flo
   if (!d || !xyz || !n) return DCURVE_ERROR_INVALID_ARGUMENT;
   return guarded(nullptr, 0, [&] { return d->d->compute_render_normals(xyz, n) ? DCURVE_OK : DCURVE_ERROR_INVALID_ARGUMENT; });
 }
+uint32_t dcurve_group_count(const dcurve_decoder* d) { return d ? d->d->group_count() : 0; }
+int dcurve_group(const dcurve_decoder* d, uint32_t i, uint32_t* first, uint32_t* count, int* material, const char** name) {
+  if (!d || i >= d->d->group_count()) return DCURVE_ERROR_INVALID_ARGUMENT;
+  const dcurve::Group g = d->d->group(i);
+  if (first) *first = g.first_face;
+  if (count) *count = g.face_count;
+  if (material) *material = g.material;
+  // The decoder's own copy: stable while it is open.
+  if (name) *name = d->d->group_name(i).c_str();
+  return DCURVE_OK;
+}
+const uint32_t* dcurve_group_faces(const dcurve_decoder* d) { return d ? d->d->group_faces() : nullptr; }
+const char* dcurve_materials_json(const dcurve_decoder* d) { return d ? d->d->materials_json().c_str() : ""; }
+uint32_t dcurve_image_count(const dcurve_decoder* d) { return d ? d->d->image_count() : 0; }
+const uint8_t* dcurve_image(const dcurve_decoder* d, uint32_t i, size_t* size, const char** mime_type) {
+  if (size) *size = 0;
+  if (mime_type) *mime_type = "";
+  if (!d || i >= d->d->image_count()) return nullptr;
+  if (mime_type) *mime_type = d->d->image_mime_type(i).c_str();
+  return d->d->image(i, size);
+}
 double dcurve_start_time(const dcurve_decoder* d) { return d ? d->d->start_time() : 0.0; }
 int dcurve_world_matrix(const dcurve_decoder* d, double matrix[16]) {
   static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};

@@ -13,7 +13,9 @@ size_t SharedState::memory_bytes() const {
                  m.curves.offsets.capacity() * 4 + m.curves.closed.capacity() + m.curves.u.capacity() * 4 +
                  m.residual.payload.capacity() + m.low_rank.coeffs.capacity() * 4 + m.low_rank.poses.capacity() * 4 +
                  m.low_rank.basis_payload.capacity() + index.chunks.capacity() * sizeof(ChunkEntry) +
-                 m.render.source.capacity() * 4 + m.render.corners.capacity() * 4 + render.memory_bytes();
+                 m.render.source.capacity() * 4 + m.render.corners.capacity() * 4 + m.render.face_group.capacity() * 4 +
+                 m.materials.json.capacity() + render.memory_bytes();
+  for (const MaterialImage& image : m.materials.images) bytes += image.bytes.capacity();
   for (const Segment& s : m.segments) {
     bytes += s.motion.capacity() * sizeof(CurveMotion);
     for (const CurveMotion& cm : s.motion) bytes += cm.coeffs.capacity() * sizeof(float);

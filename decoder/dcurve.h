@@ -108,6 +108,19 @@ int dcurve_render_positions(const dcurve_decoder* decoder, const float* xyz, flo
 /* Unit normals of render vertices from vertex positions: copies of a vertex share one normal,
  * smooth across UV seams, unless the input's own normals differ there (a hard edge). */
 int dcurve_compute_render_normals(const dcurve_decoder* decoder, const float* xyz, float* normals_out);
+/* Face groups (one per material of the input; 0 for a file without them). Group i covers
+ * triangles [first_face, first_face + face_count) of dcurve_group_faces; material indexes the
+ * "materials" of dcurve_materials_json (-1: none); name is owned by the decoder. */
+uint32_t dcurve_group_count(const dcurve_decoder* decoder);
+int dcurve_group(const dcurve_decoder* decoder, uint32_t i, uint32_t* first_face, uint32_t* face_count, int* material,
+                 const char** name);
+/* 3 * face_count render ids ordered by group, or NULL without groups. */
+const uint32_t* dcurve_group_faces(const dcurve_decoder* decoder);
+/* The groups' materials as a glTF JSON object ("materials", "textures", "samplers", "images";
+ * "" without them) and the images' bytes (image i of "images"), owned by the decoder. */
+const char* dcurve_materials_json(const dcurve_decoder* decoder);
+uint32_t dcurve_image_count(const dcurve_decoder* decoder);
+const uint8_t* dcurve_image(const dcurve_decoder* decoder, uint32_t i, size_t* size, const char** mime_type);
 /* Placement (PLAC): seconds of frame 0 in the input's timeline (0 when unknown); the world
  * transform of the input's node, column-major, written to matrix_out (identity and return 0
  * when the file has none, 1 when it has one); the input's mesh and node names ("" if none). */

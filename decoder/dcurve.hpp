@@ -59,6 +59,14 @@ enum class Attribute : int {
   Normal = DCURVE_ATTRIBUTE_NORMAL,
 };
 
+// Triangles drawn with one material: faces [first_face, first_face + face_count) of
+// Decoder::group_faces(). material indexes the "materials" of materials_json(), -1 for none.
+struct Group {
+  uint32_t first_face = 0, face_count = 0;
+  int material = -1;
+  std::string name;
+};
+
 class Cursor;
 
 class Decoder {
@@ -115,6 +123,18 @@ class Decoder {
   // Unit normals per render vertex: copies of a vertex share one (smooth across UV seams)
   // unless the input's normals differ between them. Needs connectivity.
   bool compute_render_normals(const float* xyz, float* normals_out) const;
+  // Face groups (one per material of the input; none for a file without them) and the render
+  // triangles ordered by group, each group's in the faces' order.
+  uint32_t group_count() const;
+  Group group(uint32_t i) const;
+  const std::string& group_name(uint32_t i) const;  // the decoder's own copy ("" past the last)
+  const uint32_t* group_faces() const;  // 3 * face_count render ids, or nullptr without groups
+  // The groups' materials as the input's glTF wrote them: a JSON object with "materials",
+  // "textures", "samplers", "images" (empty without MATL); image i's bytes and media type.
+  const std::string& materials_json() const;
+  uint32_t image_count() const;
+  const uint8_t* image(uint32_t i, size_t* size) const;
+  const std::string& image_mime_type(uint32_t i) const;
   // Placement (PLAC): frame 0's time in seconds in the input's timeline (0 unknown), the
   // input node's world transform (column-major; false and identity when the file has none),
   // the input's mesh and node names.

@@ -26,6 +26,8 @@ struct RenderState {
   uint32_t components[kAttributeSemanticCount] = {};
   std::vector<uint32_t> normal_group;  // per render vertex
   uint32_t normal_groups = 0;
+  std::vector<uint32_t> group_faces;   // render triangles by group (3 ids each); empty without groups
+  std::vector<uint32_t> group_first;   // group g's triangles: [group_first[g], group_first[g + 1])
   size_t memory_bytes() const;
 };
 // Builds it from model->render (the file must have passed validate_model), then frees the

@@ -39,6 +39,19 @@ void build_normal_groups(const RenderMesh& render, RenderState* state) {
   state->normal_groups = R ? group + 1 : 0;
 }
 
+// Render triangles in group order (stable: each group's keep the faces' order).
+void build_groups(const RenderMesh& render, RenderState* state) {
+  if (render.groups.empty()) return;
+  const size_t G = render.groups.size(), T = render.face_group.size();
+  state->group_first.assign(G + 1, 0);
+  for (uint32_t g : render.face_group) ++state->group_first[g + 1];
+  for (size_t g = 0; g < G; ++g) state->group_first[g + 1] += state->group_first[g];
+  std::vector<uint32_t> next(state->group_first.begin(), state->group_first.end() - 1);
+  state->group_faces.resize(3 * T);
+  for (size_t t = 0; t < T; ++t)
+    std::copy_n(render.corners.data() + 3 * t, 3, state->group_faces.data() + 3 * size_t(next[render.face_group[t]]++));
+}
+
 }  // namespace
 
 void build_render_state(Model* model, RenderState* state) {
@@ -53,11 +66,12 @@ void build_render_state(Model* model, RenderState* state) {
       for (uint32_t c = 0; c < a.components; ++c) state->attributes[s][r * a.components + c] = a.value(r, c);
   }
   build_normal_groups(render, state);
+  build_groups(render, state);
   for (RenderAttribute& a : render.attributes) std::vector<uint16_t>().swap(a.q);
 }
 
 size_t RenderState::memory_bytes() const {
-  size_t bytes = normal_group.capacity() * 4;
+  size_t bytes = (normal_group.capacity() + group_faces.capacity() + group_first.capacity()) * 4;
   for (const std::vector<float>& a : attributes) bytes += a.capacity() * 4;
   return bytes;
 }
@@ -108,6 +122,41 @@ bool Decoder::compute_render_normals(const float* xyz, float* normals) const {
   for (size_t i = 0; i < m.render.source.size(); ++i)
     std::copy_n(group_normals.data() + 3 * size_t(state.normal_group[i]), 3, normals + 3 * i);
   return true;
+}
+
+uint32_t Decoder::group_count() const { return uint32_t(impl_->shared.model.render.groups.size()); }
+
+Group Decoder::group(uint32_t i) const {
+  const RenderMesh& r = impl_->shared.model.render;
+  if (i >= r.groups.size()) return Group{};
+  const std::vector<uint32_t>& first = impl_->shared.render.group_first;
+  return Group{first[i], first[i + 1] - first[i], r.groups[i].material, r.groups[i].name};
+}
+
+const std::string& Decoder::group_name(uint32_t i) const {
+  static const std::string none;
+  const RenderMesh& r = impl_->shared.model.render;
+  return i < r.groups.size() ? r.groups[i].name : none;
+}
+
+const uint32_t* Decoder::group_faces() const {
+  const std::vector<uint32_t>& f = impl_->shared.render.group_faces;
+  return f.empty() ? nullptr : f.data();
+}
+
+const std::string& Decoder::materials_json() const { return impl_->shared.model.materials.json; }
+uint32_t Decoder::image_count() const { return uint32_t(impl_->shared.model.materials.images.size()); }
+
+const uint8_t* Decoder::image(uint32_t i, size_t* size) const {
+  const auto& images = impl_->shared.model.materials.images;
+  if (size) *size = i < images.size() ? images[i].bytes.size() : 0;
+  return i < images.size() ? images[i].bytes.data() : nullptr;
+}
+
+const std::string& Decoder::image_mime_type(uint32_t i) const {
+  static const std::string none;
+  const auto& images = impl_->shared.model.materials.images;
+  return i < images.size() ? images[i].mime_type : none;
 }
 
 double Decoder::start_time() const { return impl_->shared.model.placement.start_time; }

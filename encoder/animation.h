@@ -21,6 +21,8 @@ struct AnimationRender {
   std::vector<uint32_t> source;   // per render vertex: the vertex whose position it shows
   std::vector<uint32_t> corners;  // per corner of Animation::faces: its render vertex
   std::vector<Attribute> attributes;
+  std::vector<FaceGroup> groups;     // one per material of the input; empty: none
+  std::vector<uint32_t> face_group;  // per triangle of Animation::faces, with groups
   bool empty() const { return source.empty(); }
 };
 
@@ -31,6 +33,7 @@ struct Animation {
   double frame_rate = 30.0;                 // frames per second
   AnimationRender render;
   Placement placement;                      // where and when the input placed the animation
+  MaterialSet materials;                    // what the render groups draw with
   std::vector<std::string> notes;           // what a reader read but does not keep, for the user
 };
 

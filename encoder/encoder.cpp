@@ -335,6 +335,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   // What a game draws besides positions: written once, never part of a trial.
   m.render = build_render_mesh(anim, m.faces, opt.attributes);
   m.placement = anim.placement;
+  m.materials = m.render.empty() ? MaterialSet{} : anim.materials;
   *out = write_container(m, wo);
 
   if (!measure_decoded(*out, anim, &rep.error, error)) return false;

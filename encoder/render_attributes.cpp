@@ -87,6 +87,9 @@ RenderMesh build_render_mesh(const Animation& anim, const std::vector<uint32_t>&
   const std::vector<size_t> from = match_corners(anim.faces, file_faces);
   out.corners.resize(file_faces.size());
   for (size_t k = 0; k < file_faces.size(); ++k) out.corners[k] = anim.render.corners[from[k]];
+  out.groups = anim.render.groups;
+  if (!out.groups.empty())
+    for (size_t t = 0; t < file_faces.size() / 3; ++t) out.face_group.push_back(anim.render.face_group[from[3 * t] / 3]);
   for (const AnimationRender::Attribute& a : anim.render.attributes)
     out.attributes.push_back(quantize_attribute(a.semantic, a.components, a.values, bits_for(a.semantic, precision)));
   return out;

@@ -183,6 +183,13 @@ std::vector<Vector> recipes() {
     color.q.insert(color.q.end(), {uint16_t(30 * r), uint16_t(255 - r), uint16_t(r * r), 0});
   }
   render.render.attributes = {uv, color};
+  // Two groups, the second (triangles 1 and 3) with a textured material.
+  render.render.groups = {{-1, ""}, {0, "cloth"}};
+  render.render.face_group = {0, 1, 0, 1};
+  render.materials.json =
+      R"({"materials":[{"name":"cloth","pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
+      R"("textures":[{"source":0}],"samplers":[],"images":[{"mimeType":"image/png"}]})";
+  render.materials.images = {{"image/png", {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 1, 2, 3}}};
   render.placement.start_time = 0.5;
   render.placement.has_matrix = true;
   render.placement.matrix[12] = 2.0;
@@ -355,6 +362,21 @@ TEST(TestVectors, RenderVerticesAndPlacementDecodeAsWritten) {
     EXPECT_EQ(d->start_time(), v.model.placement.start_time);
     EXPECT_EQ(d->mesh_name(), v.model.placement.mesh_name);
     EXPECT_EQ(d->node_name(), v.model.placement.node_name);
+    // Groups: triangles 0 and 2, then 1 and 3, each group's in the faces' order.
+    ASSERT_EQ(d->group_count(), r.groups.size());
+    const std::vector<uint32_t> grouped(d->group_faces(), d->group_faces() + r.corners.size());
+    EXPECT_EQ(grouped, (std::vector<uint32_t>{0, 1, 2, 6, 7, 4, 2, 1, 3, 4, 5, 6}));
+    EXPECT_EQ(d->group(1).first_face, 2u);
+    EXPECT_EQ(d->group(1).face_count, 2u);
+    EXPECT_EQ(d->group(1).material, 0);
+    EXPECT_EQ(d->group_name(1), "cloth");
+    EXPECT_EQ(d->group(0).material, -1);
+    EXPECT_EQ(d->materials_json(), v.model.materials.json);
+    ASSERT_EQ(d->image_count(), 1u);
+    size_t size = 0;
+    const uint8_t* image = d->image(0, &size);
+    EXPECT_EQ(std::vector<uint8_t>(image, image + size), v.model.materials.images[0].bytes);
+    EXPECT_EQ(d->image_mime_type(0), "image/png");
   }
 }
 

@@ -112,6 +112,38 @@ TEST(HostileGltfResources, ImagesAndUnusedBuffersAreNeverOpened) {
   EXPECT_EQ(read_gltf(dir / "t.gltf", j), "");
 }
 
+// An image is read only when a material of the mesh uses it, and then under the same policy
+// as buffers: a file inside the glTF's folder, regular, no other.
+TEST(HostileGltfResources, AMaterialsImagesAreReadUnderThePolicy) {
+  TempDir dir;
+  fs::create_directories(dir / "asset");
+  write_triangle_buffer(dir / "asset/buf.bin");
+  write_bytes(dir / "secret.png", "\x89PNG\r\n\x1a\nsecret");
+  write_bytes(dir / "asset/tex.png", "\x89PNG\r\n\x1a\npixels");
+  ASSERT_EQ(mkfifo((dir / "asset/fifo.png").c_str(), 0600), 0);  // opening it for reading would hang
+  json j = triangle_gltf();
+  j["materials"] = json::array({{{"name", "cloth"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  j["textures"] = json::array({{{"source", 0}}});
+  j["meshes"][0]["primitives"][0]["material"] = 0;
+  for (const char* uri : {"../secret.png", "fifo.png"}) {
+    j["images"] = json::array({{{"uri", uri}}});
+    const std::string err = read_gltf(dir / "asset/t.gltf", j);
+    EXPECT_TRUE(contains(err, "image 0")) << uri << ": " << err;
+    EXPECT_TRUE(contains(err, std::string(uri) == "fifo.png" ? "FIFO" : "leads outside the glTF's folder")) << err;
+  }
+  j["images"] = json::array({{{"uri", "tex.png"}}});
+  std::ofstream(dir / "asset/t.gltf") << j.dump();
+  Animation anim;
+  std::string err;
+  ASSERT_TRUE(read_gltf_animation(dir / "asset/t.gltf", -1, &anim, &err)) << err;
+  ASSERT_EQ(anim.materials.images.size(), 1u);
+  EXPECT_EQ(std::string(anim.materials.images[0].bytes.begin(), anim.materials.images[0].bytes.end()),
+            "\x89PNG\r\n\x1a\npixels");
+  EXPECT_EQ(anim.materials.images[0].mime_type, "image/png");
+  ASSERT_EQ(anim.render.groups.size(), 1u);
+  EXPECT_EQ(anim.render.groups[0].name, "cloth");
+}
+
 TEST(HostileGltfResources, BufferSizeMustMatchItsFileAndDataUrisAreBounded) {
   TempDir dir;
   write_triangle_buffer(dir / "buf.bin");

@@ -1,7 +1,8 @@
-// A textured cloth as glTF-Transform writes it (tests/interop/write_textured_glb.mjs: a UV
-// seam, normals, the mesh node inside a scaled parent, keys from 1/24 s, an object animation
-// beside the morph animation) through encode and decode: the .glb that comes out passes the
-// Khronos validator, and glTF-Transform reads back the UVs within their precision, seam
+// A textured cloth as glTF-Transform writes it (tests/interop/write_textured_glb.mjs: two
+// primitives with two materials, one textured; a UV seam; normals; the mesh node inside a
+// scaled parent; keys from 1/24 s; an object animation beside the morph animation) through
+// encode and decode: the .glb that comes out passes the Khronos validator, and glTF-Transform
+// reads back both materials and the texture's bytes, the UVs within their precision, seam
 // copies at distance 0 with one normal in every frame, the node's world transform, the first
 // key time and the names. The dropped object animation is named to the user.
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "interop_util.h"
@@ -58,7 +60,17 @@ class InteropTextured : public ::testing::Test {
   std::string encode_output_;
 };
 
-TEST_F(InteropTextured, SeamsUvsPlacementAndStartTimeComeBackInAValidGlb) {
+// The input's primitives' arrays one after the other: the render vertices' order.
+std::vector<double> joined(const Json& primitives, const char* key, size_t frame = SIZE_MAX) {
+  std::vector<double> out;
+  for (const Json& p : primitives) {
+    const Json& values = frame == SIZE_MAX ? p[key] : p[key][frame];
+    for (const Json& x : values) out.push_back(x.get<double>());
+  }
+  return out;
+}
+
+TEST_F(InteropTextured, SeamsUvsMaterialsPlacementAndStartTimeComeBackInAValidGlb) {
   EXPECT_TRUE(contains(encode_output_, "animation 'walk' (translation of node 'rig') is not stored")) << encode_output_;
   ASSERT_EQ(run_cli("decode " + dir_ / "x.dcrv -o " + dir_ / "out.glb").exit_code, 0);
   CommandResult v = run_node("validate.mjs " + dir_ / "out.glb");
@@ -66,28 +78,48 @@ TEST_F(InteropTextured, SeamsUvsPlacementAndStartTimeComeBackInAValidGlb) {
   EXPECT_TRUE(contains(v.output, "errors 0")) << v.output;
   const Json out = read_glb(dir_ / "out.glb");
   ASSERT_FALSE(out.is_null());
+  const Json& in_prims = in_["primitives"];
+  const Json& out_prims = out["primitives"];
 
-  // Render vertices in the input's order, with their UVs within 14 bits of the range [0, 1].
-  ASSERT_EQ(out["vertices"], in_["vertices"]);
-  const std::vector<double> uv_in = in_["uv"], uv_out = out["uv"];
+  // Both materials, one primitive each, the texture's bytes unchanged.
+  ASSERT_EQ(out_prims.size(), 2u);
+  EXPECT_EQ(out_prims[0]["material"], "cloth");
+  EXPECT_EQ(out_prims[0]["texture"], layout_["png"]);
+  EXPECT_EQ(out_prims[1]["material"], "trim");
+  EXPECT_EQ(out_prims[1]["baseColor"], in_prims[1]["baseColor"]);
+  // The primitives share the render vertices, in the input's order: the first primitive's,
+  // then the second's; each draws its own.
+  const size_t per_part = in_prims[0]["uv"].size() / 2;
+  for (size_t g = 0; g < 2; ++g)
+    for (const Json& id : out_prims[g]["indices"]) {
+      EXPECT_GE(id.get<size_t>(), g * per_part);
+      EXPECT_LT(id.get<size_t>(), (g + 1) * per_part);
+    }
+
+  // UVs within 14 bits of the range [0, 1].
+  const std::vector<double> uv_in = joined(in_prims, "uv"), uv_out = out_prims[0]["uv"];
   ASSERT_EQ(uv_in.size(), uv_out.size());
   for (size_t i = 0; i < uv_in.size(); ++i) EXPECT_NEAR(uv_out[i], uv_in[i], 1.0 / (2 * 16383) + 1e-6) << i;
 
-  // Every frame within the tolerance; each seam pair at distance 0 with one normal.
-  const std::vector<std::vector<double>> p_in = in_["positions"], p_out = out["positions"], n_out = out["normals"];
-  ASSERT_EQ(p_in.size(), p_out.size());
-  ASSERT_EQ(n_out.size(), p_out.size());
-  const double limit = 1e-3 * diagonal(p_in[0]) + 1e-6;
-  const uint32_t columns = layout_["columns"], rows = layout_["rows"], around = layout_["around"];
-  for (size_t f = 0; f < p_out.size(); ++f) {
-    for (size_t i = 0; i < p_in[f].size(); i += 3)
-      EXPECT_LE(std::hypot(p_out[f][i] - p_in[f][i], p_out[f][i + 1] - p_in[f][i + 1], p_out[f][i + 2] - p_in[f][i + 2]),
-                limit);
-    for (uint32_t j = 0; j < rows; ++j)
+  // Every frame within the tolerance; each seam pair and each vertex of the row both
+  // primitives hold at distance 0, with one normal.
+  const size_t frames = out["times"].size();
+  const double limit = 1e-3 * diagonal(joined(in_prims, "positions", 0)) + 1e-6;
+  const uint32_t columns = layout_["columns"], around = layout_["around"], split = layout_["split"];
+  std::vector<std::pair<size_t, size_t>> copies;
+  for (size_t part = 0; part < 2; ++part)
+    for (uint32_t j = 0; j <= split; ++j) copies.push_back({part * per_part + j * columns, part * per_part + j * columns + around});
+  for (uint32_t i = 0; i < columns; ++i) copies.push_back({split * columns + i, per_part + i});
+  for (size_t f = 0; f < frames; ++f) {
+    const std::vector<double> p_in = joined(in_prims, "positions", f), p_out = out_prims[0]["positions"][f],
+                              n_out = out_prims[0]["normals"][f];
+    ASSERT_EQ(p_in.size(), p_out.size());
+    for (size_t i = 0; i < p_in.size(); i += 3)
+      EXPECT_LE(std::hypot(p_out[i] - p_in[i], p_out[i + 1] - p_in[i + 1], p_out[i + 2] - p_in[i + 2]), limit);
+    for (const auto& [a, b] : copies)
       for (int k = 0; k < 3; ++k) {
-        const size_t first = 3 * size_t(j * columns) + k, copy = 3 * size_t(j * columns + around) + k;
-        EXPECT_EQ(p_out[f][first], p_out[f][copy]) << "frame " << f << " row " << j;
-        EXPECT_EQ(n_out[f][first], n_out[f][copy]) << "frame " << f << " row " << j;
+        EXPECT_EQ(p_out[3 * a + k], p_out[3 * b + k]) << "frame " << f << " vertices " << a << ", " << b;
+        EXPECT_EQ(n_out[3 * a + k], n_out[3 * b + k]) << "frame " << f << " vertices " << a << ", " << b;
       }
   }
 
@@ -115,7 +147,7 @@ TEST_F(InteropTextured, PointCachesStartAtTheInputsFirstFrame) {
   EXPECT_NEAR(start, 1.0f, 1e-5f);
   uint32_t points;
   std::memcpy(&points, header + 16, 4);
-  EXPECT_EQ(points, 144u);  // a point cache holds one position per vertex: 153 render vertices, 9 seam copies
+  EXPECT_EQ(points, 144u);  // one position per vertex: 170 render vertices, 26 of them copies
   unsigned char m[12];
   ASSERT_TRUE(mdd.read(reinterpret_cast<char*>(m), 12));
   const uint32_t bits = uint32_t(m[8]) << 24 | uint32_t(m[9]) << 16 | uint32_t(m[10]) << 8 | m[11];

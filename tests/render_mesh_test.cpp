@@ -1,6 +1,7 @@
 // Render vertices (REND) and placement (PLAC): seam copies welded and decoded at one
 // position, attributes within their precision, normals shared across UV seams but not hard
-// edges, the face coder's reordering followed, every rejection of dcrv.md sections 19-20.
+// edges, the face coder's reordering followed, face groups and materials, every rejection of
+// dcrv.md sections 19-21.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "codec/common/bytes.h"
@@ -78,7 +80,9 @@ bool testing_refused_or_same(const std::vector<uint8_t>& file, const Decoder& or
   dec->compute_render_normals(xyz.data(), n.data());
   for (size_t k = 0; dec->render_faces() && k < 3 * size_t(dec->face_count()); ++k)
     if (dec->render_faces()[k] >= dec->render_vertex_count()) return false;
-  return true;
+  uint32_t grouped = 0;
+  for (uint32_t g = 0; g < dec->group_count(); ++g) grouped += dec->group(g).face_count;
+  return dec->group_count() == 0 || grouped == dec->face_count();
 }
 
 std::vector<uint8_t> encode(const Animation& anim) {
@@ -231,6 +235,8 @@ struct RendBytes {
   uint8_t version = render_format::kVersion;
   int64_t render_count = -1;                    // -1: source.size()
   std::vector<uint8_t> attribute;               // one attribute record, or none
+  std::vector<std::pair<uint64_t, std::string>> groups;  // material code, name
+  std::vector<uint64_t> face_groups;            // per triangle, with groups
 
   std::vector<uint8_t> bytes() const {
     ByteWriter w;
@@ -240,6 +246,12 @@ struct RendBytes {
     for (uint64_t j : ordinals) w.varint(j);
     w.u8(attribute.empty() ? 0 : 1);
     w.bytes(attribute.data(), attribute.size());
+    w.varint(groups.size());
+    for (const auto& [material, name] : groups) {
+      w.varint(material);
+      w.str(name);
+    }
+    for (uint64_t g : face_groups) w.varint(g);
     return std::move(w.data());
   }
 };
@@ -312,6 +324,84 @@ TEST(RenderMesh, RejectsEveryMalformedPayload) {
   EXPECT_FALSE(parse_render(r, &no_faces));
 }
 
+TEST(RenderMesh, GroupsParseAndEveryMalformedGroupIsRejected) {
+  RendBytes b;
+  b.groups = {{0, ""}, {3, "cloth"}};
+  b.face_groups = {1};
+  Model m;
+  ASSERT_TRUE(parses(b.bytes(), &m));
+  ASSERT_EQ(m.render.groups.size(), 2u);
+  EXPECT_EQ(m.render.groups[0].material, -1);
+  EXPECT_EQ(m.render.groups[1].material, 2);
+  EXPECT_EQ(m.render.groups[1].name, "cloth");
+  EXPECT_EQ(m.render.face_group, (std::vector<uint32_t>{1}));
+  auto with = [](auto edit) {
+    RendBytes b;
+    b.groups = {{0, ""}, {1, "a"}};
+    b.face_groups = {0};
+    edit(b);
+    return b.bytes();
+  };
+  EXPECT_FALSE(parses(with([](RendBytes& b) { b.face_groups = {2}; })));                 // no group 2
+  EXPECT_FALSE(parses(with([](RendBytes& b) { b.face_groups = {}; })));                  // missing
+  EXPECT_FALSE(parses(with([](RendBytes& b) { b.groups[1].first = uint64_t(1) << 31; })));  // material past int32
+  EXPECT_FALSE(parses(with([](RendBytes& b) { b.groups[1].second.assign(render_format::kMaxNameBytes + 1, 'n'); })));
+  EXPECT_FALSE(parses(with([](RendBytes& b) { b.groups.resize(40); b.face_groups = {}; })));  // more than the bytes
+}
+
+TEST(RenderMesh, MaterialsParseAndEveryMalformedSectionIsRejected) {
+  auto payload = [](uint8_t version, const std::string& json, uint64_t count, const std::string& mime, uint64_t size,
+                    size_t bytes) {
+    ByteWriter w;
+    w.u8(version);
+    w.str(json);
+    w.varint(count);
+    if (count > 0) {
+      w.str(mime);
+      w.varint(size);
+      w.bytes(std::string(bytes, 'x').data(), bytes);
+    }
+    return std::move(w.data());
+  };
+  auto parses_materials = [](const std::vector<uint8_t>& p, Model* m) {
+    ByteReader r(p.data(), p.size());
+    return parse_materials(r, m) && r.remaining() == 0;
+  };
+  Model m;
+  ASSERT_TRUE(parses_materials(payload(1, "{}", 1, "image/png", 5, 5), &m));
+  EXPECT_EQ(m.materials.json, "{}");
+  ASSERT_EQ(m.materials.images.size(), 1u);
+  EXPECT_EQ(m.materials.images[0].bytes.size(), 5u);
+  EXPECT_FALSE(parses_materials(payload(2, "{}", 1, "image/png", 5, 5), &m));
+  EXPECT_FALSE(parses_materials(payload(1, "{}", 1, "image/png", 6, 5), &m));   // past the end
+  EXPECT_FALSE(parses_materials(payload(1, "{}", 1, "image/png", 4, 5), &m));   // a byte left over
+  EXPECT_FALSE(parses_materials(payload(1, "{}", 1, std::string(render_format::kMaxMimeBytes + 1, 'm'), 5, 5), &m));
+  EXPECT_FALSE(parses_materials(payload(1, "{}", 100, "image/png", 5, 5), &m));  // more images than bytes
+  std::vector<uint8_t> long_json = payload(1, "{}", 0, "", 0, 0);
+  long_json[1] = 100;  // the JSON's length past the end
+  EXPECT_FALSE(parses_materials(long_json, &m));
+}
+
+TEST(RenderMesh, MaterialsWithoutRenderVerticesAreRejected) {
+  Tube t = make_tube(6, 2, 3);
+  weld_copies(&t.anim, t.attributes);
+  t.anim.render.groups = {{0, "cloth"}};
+  t.anim.render.face_group.assign(t.anim.faces.size() / 3, 0);
+  t.anim.materials.json = R"({"materials":[{"name":"cloth"}]})";
+  const std::vector<uint8_t> bytes = encode(t.anim);
+  testing::RawFile file = testing::split_file(bytes);
+  bool had_materials = false;
+  for (size_t s = 0; s < file.sections.size(); ++s)
+    if (file.sections[s].tag == "REND") file.sections.erase(file.sections.begin() + std::ptrdiff_t(s--));
+    else had_materials |= file.sections[s].tag == "MATL";
+  ASSERT_TRUE(had_materials);
+  const std::vector<uint8_t> out = testing::assemble(file);
+  Model m;
+  std::string err;
+  EXPECT_FALSE(read_container(out.data(), out.size(), &m, &err));
+  EXPECT_NE(err.find("materials without render vertices"), std::string::npos) << err;
+}
+
 TEST(RenderMesh, PlacementRejectsWhatItsSectionForbids) {
   auto payload = [](uint8_t version, double start, uint8_t has_matrix, double entry, size_t name_bytes) {
     ByteWriter w;
@@ -344,7 +434,11 @@ TEST(RenderMesh, PlacementRejectsWhatItsSectionForbids) {
 // opens to the same positions with render data that stays in bounds (checked under ASan).
 TEST(RenderMesh, ByteFlipsInRenderSectionsAreRefusedOrDecodeTheSame) {
   Tube t = make_tube(6, 2, 3);
+  t.anim.render.groups = {{-1, ""}, {0, "cloth"}};
+  for (size_t f = 0; f < t.anim.faces.size() / 3; ++f) t.anim.render.face_group.push_back(f % 2);
   weld_copies(&t.anim, t.attributes);
+  t.anim.materials.json = R"({"materials":[{"name":"cloth"}],"images":[{"mimeType":"image/png"}]})";
+  t.anim.materials.images = {{"image/png", {1, 2, 3, 4}}};
   t.anim.placement.node_name = "n";
   const std::vector<uint8_t> bytes = encode(t.anim);
   std::string err;
@@ -354,7 +448,7 @@ TEST(RenderMesh, ByteFlipsInRenderSectionsAreRefusedOrDecodeTheSame) {
   EXPECT_EQ(file.minor, kRenderFormatVersionMinor);
   size_t refused = 0, flips = 0;
   for (size_t s = 0; s < file.sections.size(); ++s) {
-    if (file.sections[s].tag != "REND" && file.sections[s].tag != "PLAC") continue;
+    if (file.sections[s].tag != "REND" && file.sections[s].tag != "PLAC" && file.sections[s].tag != "MATL") continue;
     EXPECT_EQ(file.sections[s].flags & 1, 0) << "optional";
     for (size_t i = 0; i < file.sections[s].stored.size(); ++i, ++flips) {
       testing::RawFile damaged = file;

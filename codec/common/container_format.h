@@ -66,6 +66,7 @@ const uint32_t kLowRank = fourcc("LRNK");
 const uint32_t kResidual = fourcc("RESI");
 const uint32_t kRender = fourcc("REND");
 const uint32_t kPlacement = fourcc("PLAC");
+const uint32_t kMaterials = fourcc("MATL");
 
 // Curve parameters u as 16-bit fixed point (CURV section).
 inline uint16_t u_to_fixed(float u) { return uint16_t(std::lround(std::clamp(u, 0.f, 1.f) * 65535.f)); }

@@ -129,6 +129,7 @@ struct Model {
   LowRankModel low_rank;
   RenderMesh render;     // empty: render vertices are the vertices, no attributes (REND)
   Placement placement;   // (PLAC)
+  MaterialSet materials; // what the render groups draw with (MATL)
 };
 
 }  // namespace dcurve

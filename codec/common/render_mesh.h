@@ -36,11 +36,33 @@ struct RenderAttribute {
 // faces' order). Vertices are numbered in order of first appearance in `source` (so render
 // vertex 0 shows vertex 0, and a mesh without copies has source[r] == r); REND stores source
 // as "new" or a distance back, and each corner as which copy of its vertex it takes.
+// Triangles drawn with one material (a glTF primitive, an OBJ usemtl block).
+struct FaceGroup {
+  int32_t material = -1;  // index into MaterialSet's "materials", -1: none
+  std::string name;       // the material's name, for engines that match materials by name
+};
+
 struct RenderMesh {
   std::vector<uint32_t> source;
   std::vector<uint32_t> corners;
   std::vector<RenderAttribute> attributes;
+  std::vector<FaceGroup> groups;     // empty: one group of every face, no material
+  std::vector<uint32_t> face_group;  // per triangle of Model::faces when groups are present
   bool empty() const { return source.empty(); }
+};
+
+// The materials the groups use, as the input's glTF wrote them (MATL): a JSON object with the
+// arrays "materials", "textures", "samplers" and "images" (each image {"name", "mimeType"},
+// its bytes in `images` at the same index) and the extensions they use. Stored, not
+// referenced: a .dcrv is one asset, and decoding reads nothing beside it.
+struct MaterialImage {
+  std::string mime_type;
+  std::vector<uint8_t> bytes;
+};
+struct MaterialSet {
+  std::string json;
+  std::vector<MaterialImage> images;
+  bool empty() const { return json.empty() && images.empty(); }
 };
 
 // Where the animation sits and when it starts, as the input said (PLAC).

@@ -45,6 +45,12 @@ bool validate_render(const Model& m, std::string* error) {
       return fail(error, "render attributes are not in ascending semantic order");
     if (!validate_attribute(r.attributes[i], r.source.size(), error)) return false;
   }
+  if (r.groups.empty()) return r.face_group.empty() ? true : fail(error, "face groups without groups");
+  if (r.face_group.size() != m.faces.size() / 3) return fail(error, "face groups do not cover every triangle");
+  for (uint32_t g : r.face_group)
+    if (g >= r.groups.size()) return fail(error, "a triangle's face group does not exist");
+  for (const FaceGroup& g : r.groups)
+    if (g.material < -1) return fail(error, "a face group's material index is negative");
   return true;
 }
 
@@ -163,6 +169,7 @@ bool validate_model(const Model& m, std::string* error) {
       if (std::fabs(o) + m.residual.step * 2147483648.0 > double(std::numeric_limits<float>::max()))
         return fail(error, "residual grid would place grid values outside the float range");
   }
+  if (!m.materials.empty() && m.render.empty()) return fail(error, "materials without render vertices");
   return validate_render(m, error) && validate_placement(m.placement, error);
 }
 

@@ -165,11 +165,13 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   const bool render = !model.render.empty() && options.connectivity && !model.faces.empty();
   if (render) sections.emplace_back(kRender, render_bytes(model));
   if (!model.placement.empty()) sections.emplace_back(kPlacement, placement_bytes(model));
+  if (render && !model.materials.empty()) sections.emplace_back(kMaterials, material_bytes(model));
 
   ByteWriter body;
   // Positions decode without FACE, REND and PLAC: a reader that skips them is still right.
   for (const auto& [tag, raw] : sections)
-    put_section(body, tag, tag != kFaces && tag != kRender && tag != kPlacement, raw, options.zstd_level);
+    put_section(body, tag, tag != kFaces && tag != kRender && tag != kPlacement && tag != kMaterials, raw,
+                options.zstd_level);
   ByteWriter out;
   out.bytes(kMagic, 4);
   const bool fast = !model.residual.payload.empty() && model.residual.payload[0] == fast_residual::kPayloadVersion;

@@ -48,6 +48,27 @@ std::vector<uint8_t> render_bytes(const Model& model) {
   for (uint32_t j : ordinals) w.varint(j);
   w.u8(uint8_t(render.attributes.size()));
   for (const RenderAttribute& a : render.attributes) write_attribute(w, a, render.source.size());
+  w.varint(render.groups.size());
+  for (const FaceGroup& g : render.groups) {
+    w.varint(uint64_t(int64_t(g.material) + 1));
+    w.str(g.name);
+  }
+  if (!render.groups.empty())
+    for (uint32_t g : render.face_group) w.varint(g);
+  return std::move(w.data());
+}
+
+std::vector<uint8_t> material_bytes(const Model& model) {
+  const MaterialSet& m = model.materials;
+  ByteWriter w;
+  w.u8(render_format::kVersion);
+  w.str(m.json);
+  w.varint(m.images.size());
+  for (const MaterialImage& image : m.images) {
+    w.str(image.mime_type);
+    w.varint(image.bytes.size());
+    w.bytes(image.bytes.data(), image.bytes.size());
+  }
   return std::move(w.data());
 }
 

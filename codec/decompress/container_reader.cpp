@@ -213,9 +213,10 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
   ByteReader r(data, size_t(h.head_bytes));
   r.take(kHeaderBytes);
 
-  constexpr int kKnown = 8;
+  constexpr int kKnown = 9;
   bool seen[kKnown] = {};
-  const uint32_t order[kKnown] = {kMeta, kFaces, kCurves, kSegments, kLowRank, kResidual, kRender, kPlacement};
+  const uint32_t order[kKnown] = {kMeta,     kFaces,  kCurves,    kSegments, kLowRank,
+                                  kResidual, kRender, kPlacement, kMaterials};
   std::vector<uint8_t> raw;
   for (uint32_t i = 0; i < h.section_count; ++i) {
     const size_t header_at = r.position();
@@ -283,6 +284,7 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
     else if (tag == kResidual) ok = parse_residual(s, model);
     else if (tag == kRender) ok = seen[0] && parse_render(s, model);
     else if (tag == kPlacement) ok = parse_placement(s, model);
+    else if (tag == kMaterials) ok = parse_materials(s, model);
     if (!ok || s.remaining() != 0) return fail(error, "section " + name + " is malformed");
   }
   if (r.remaining() != 0) return fail(error, "the sections end before the header's chunk data offset");

@@ -70,6 +70,24 @@ bool read_attribute(ByteReader& r, size_t render_count, int previous_semantic, R
   return r.ok;
 }
 
+// Groups and, with any, the group of each triangle.
+bool read_groups(ByteReader& r, size_t triangles, RenderMesh* render) {
+  const uint64_t count = r.varint();
+  if (!r.ok || count > r.remaining() / 2) return false;  // a material varint and a name length each
+  render->groups.resize(size_t(count));
+  for (FaceGroup& g : render->groups) {
+    const uint64_t material = r.varint();
+    if (material > uint64_t(INT32_MAX)) return false;
+    g.material = int32_t(material) - 1;
+    g.name = r.str(render_format::kMaxNameBytes);
+  }
+  if (!r.ok || count == 0) return r.ok;
+  if (!read_varints(r, triangles, &render->face_group)) return false;
+  for (uint32_t g : render->face_group)
+    if (g >= count) return false;
+  return true;
+}
+
 }  // namespace
 
 bool parse_render(ByteReader& r, Model* model) {
@@ -90,7 +108,24 @@ bool parse_render(ByteReader& r, Model* model) {
     if (!read_attribute(r, size_t(render_count), previous, &a)) return false;
     previous = int(a.semantic);
   }
-  return true;
+  return read_groups(r, model->faces.size() / 3, &render);
+}
+
+bool parse_materials(ByteReader& r, Model* model) {
+  MaterialSet& m = model->materials;
+  if (r.u8() != render_format::kVersion) return false;
+  m.json = r.str(r.remaining());
+  const uint64_t count = r.varint();
+  if (!r.ok || count > r.remaining() / 2) return false;  // a media type length and a size each
+  m.images.resize(size_t(count));
+  for (MaterialImage& image : m.images) {
+    image.mime_type = r.str(render_format::kMaxMimeBytes);
+    const uint64_t size = r.varint();
+    if (!r.ok || size > r.remaining()) return false;
+    const uint8_t* p = r.take(size_t(size));
+    image.bytes.assign(p, p + size);
+  }
+  return r.ok;
 }
 
 bool parse_placement(ByteReader& r, Model* model) {

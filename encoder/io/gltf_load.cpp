@@ -49,8 +49,13 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
 
 bool write_whole_file(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
-// dcurve reads geometry only: images are neither decoded nor required to exist.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Images are never decoded: the bytes tinygltf found (a data: uri's or a bufferView's) are
+// kept as they are for the materials a mesh carries (gltf_materials.h). A file an image
+// names is not served (not planned), so none is opened here.
+bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
+  image->as_is = true;
   return true;
 }
 
@@ -75,7 +80,7 @@ bool json_text(const std::vector<uint8_t>& bytes, bool binary, std::string* text
 bool parse_model(const std::vector<uint8_t>& bytes, bool binary, Server* server, tinygltf::Model* model,
                  std::string* error) {
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skip_image, nullptr);
+  loader.SetImageLoader(keep_image_bytes, nullptr);
   loader.SetFsCallbacks({file_exists, expand_path, read_whole_file, write_whole_file, server});
   std::string err, warn;
   const bool ok =
@@ -91,7 +96,7 @@ bool parse_model(const std::vector<uint8_t>& bytes, bool binary, Server* server,
 }  // namespace
 
 bool load_gltf_model(const std::string& path, const ReadLimits& limits, MemoryBudget* budget, tinygltf::Model* model,
-                     std::string* error) {
+                     std::string* error, std::string* json) {
   std::vector<uint8_t> bytes;
   std::string text, err;
   const bool binary = lowercase_extension(path) == ".glb";
@@ -105,7 +110,7 @@ bool load_gltf_model(const std::string& path, const ReadLimits& limits, MemoryBu
   return budget->take(bytes.size(), 1, "the file", error) && json_text(bytes, binary, &text, error) &&
          check_json_depth(text.data(), text.size(), kMaxJsonDepth, error) &&
          plan_gltf_buffers(text, dir, limits, budget, &server.plan, error) &&
-         parse_model(bytes, binary, &server, model, error);
+         parse_model(bytes, binary, &server, model, error) && (!json || (*json = std::move(text), true));
 }
 
 }  // namespace dcurve

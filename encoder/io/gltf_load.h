@@ -13,8 +13,10 @@ namespace dcurve {
 
 // Reads `path` (.gltf or .glb) and the buffers its accessors use. Refused before tinygltf
 // parses it: a special file, JSON nested deeper than kMaxJsonDepth, buffers over `budget`,
-// a resource the policy refuses. Errors do not name the file (the caller does).
+// a resource the policy refuses. Errors do not name the file (the caller does). `json`, when
+// given, receives the file's JSON text. Images keep their bytes undecoded (data: uris' and
+// bufferViews' as tinygltf found them; files are never opened here).
 bool load_gltf_model(const std::string& path, const ReadLimits& limits, MemoryBudget* budget, tinygltf::Model* model,
-                     std::string* error);
+                     std::string* error, std::string* json = nullptr);
 
 }  // namespace dcurve

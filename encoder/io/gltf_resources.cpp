@@ -12,6 +12,7 @@
 
 #include "codec/common/error.h"
 #include "encoder/io/files.h"
+#include "encoder/io/gltf_materials.h"
 #include "encoder/io/quoted_text.h"
 
 namespace dcurve {
@@ -52,7 +53,8 @@ bool allowed_place(const fs::path& path, const fs::path& base, const std::vector
   return false;
 }
 
-// The accessors' buffers: those of the bufferViews an accessor (or its sparse part) names.
+// The accessors' buffers: those of the bufferViews an accessor (or its sparse part) or a used
+// image names.
 std::set<int64_t> used_buffers(const json& doc) {
   std::set<int64_t> views, buffers;
   auto add_view = [&views](const json& owner) {
@@ -68,6 +70,10 @@ std::set<int64_t> used_buffers(const json& doc) {
     for (const char* part : {"indices", "values"})
       if (sparse->contains(part) && (*sparse)[part].is_object()) add_view((*sparse)[part]);
   }
+  // The images a used material needs (gltf_materials.h): their bufferViews' buffers are read too.
+  const json& images = doc.contains("images") && doc["images"].is_array() ? doc["images"] : json::array();
+  for (int64_t i : used_images(doc))
+    if (i >= 0 && size_t(i) < images.size() && images[size_t(i)].is_object()) add_view(images[size_t(i)]);
   const json& bv = doc.contains("bufferViews") ? doc["bufferViews"] : json::array();
   for (int64_t v : views)
     if (bv.is_array() && v >= 0 && size_t(v) < bv.size() && bv[size_t(v)].is_object() && bv[size_t(v)].contains("buffer") &&

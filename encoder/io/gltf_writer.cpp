@@ -39,10 +39,12 @@ void append_base64(const uint8_t* p, size_t size, std::string* out) {
 
 void store_u32(uint8_t* p, uint32_t v) { std::memcpy(p, &v, 4); }  // little-endian targets, as GLB
 
+}  // namespace
+
 // The byte layout of the one buffer: where each part starts.
-struct Layout {
+struct GltfLayout {
   uint64_t indices = 0, statics, base, targets, times, weights, end;
-  Layout(uint32_t vertices, size_t face_ids, uint32_t frame_count, uint64_t static_bytes, bool normals) {
+  GltfLayout(uint32_t vertices, size_t face_ids, uint32_t frame_count, uint64_t static_bytes, bool normals) {
     const uint64_t frames = frame_count ? frame_count : 1, frame_bytes = (normals ? 24 : 12) * uint64_t(vertices);
     statics = 4 * uint64_t(face_ids);
     base = statics + static_bytes;
@@ -52,6 +54,8 @@ struct Layout {
     end = weights + 4 * uint64_t(frames) * (frames - 1);
   }
 };
+
+namespace {
 
 Json view(uint64_t offset, uint64_t length, int target, uint32_t stride = 12) {
   Json v = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}};
@@ -91,6 +95,48 @@ void add_static_attributes(const GltfScene& scene, uint64_t offset, uint32_t ver
   }
 }
 
+uint64_t images_bytes(const GltfScene& scene) {
+  uint64_t bytes = 0;
+  for (const MaterialImage& image : scene.images) bytes += padded4(image.bytes.size());
+  return bytes;
+}
+
+// The materials and textures as stored, each image a bufferView of the buffer (after the
+// static attributes, 4-byte aligned).
+void add_materials(const GltfScene& scene, uint64_t offset, Json* doc, Json* views) {
+  const Json m = Json::parse(scene.materials_json, nullptr, false);
+  if (!m.is_object()) return;
+  for (const char* key : {"extensionsUsed", "extensionsRequired", "materials", "textures", "samplers"})
+    if (m.contains(key) && m[key].is_array() && !m[key].empty()) (*doc)[key] = m[key];
+  const Json& images = m.contains("images") && m["images"].is_array() ? m["images"] : Json::array();
+  Json out = Json::array();
+  for (size_t i = 0; i < scene.images.size(); ++i) {
+    views->push_back(view(offset, scene.images[i].bytes.size(), 0));
+    Json image = {{"bufferView", views->size() - 1}, {"mimeType", scene.images[i].mime_type}};
+    if (i < images.size() && images[i].is_object() && images[i].contains("name")) image["name"] = images[i]["name"];
+    out.push_back(image);
+    offset += padded4(scene.images[i].bytes.size());
+  }
+  if (!out.empty()) (*doc)["images"] = out;
+}
+
+// One primitive per face group (its slice of the index buffer, its material), or `primitive`
+// alone without groups.
+Json group_primitives(const GltfScene& scene, const Json& primitive, int index_view, size_t materials, Json* accessors) {
+  if (scene.group_faces.empty()) return Json::array({primitive});
+  Json out = Json::array();
+  uint64_t first = 0;
+  for (size_t g = 0; g < scene.group_faces.size(); ++g) {
+    Json p = primitive;
+    accessors->push_back(accessor(index_view, 12 * first, 3 * uint64_t(scene.group_faces[g]), "SCALAR", kUnsignedInt));
+    p["indices"] = accessors->size() - 1;
+    if (scene.group_materials[g] >= 0 && size_t(scene.group_materials[g]) < materials) p["material"] = scene.group_materials[g];
+    out.push_back(p);
+    first += scene.group_faces[g];
+  }
+  return out;
+}
+
 // The node showing the mesh: the input's name and world transform.
 Json mesh_node(const Placement& p) {
   Json node = {{"mesh", 0}};
@@ -109,11 +155,11 @@ GltfWriter::GltfWriter(uint32_t vertex_count, std::vector<uint32_t> faces, uint3
 uint64_t GltfWriter::static_bytes() const {
   uint64_t bytes = 0;
   for (const GltfScene::Attribute& a : scene_.attributes) bytes += 4 * uint64_t(a.components) * vertex_count_;
-  return bytes;
+  return bytes + images_bytes(scene_);
 }
 
 uint64_t GltfWriter::buffer_bytes() const {
-  return Layout(vertex_count_, faces_.size(), frame_count_, static_bytes(), scene_.normals).end;
+  return GltfLayout(vertex_count_, faces_.size(), frame_count_, static_bytes(), scene_.normals).end;
 }
 
 // The morph targets' accessors and the primitive's list of them, as JSON text: thousands of
@@ -145,7 +191,7 @@ TargetText GltfWriter::target_text(int view_index, uint64_t first_accessor, bool
 // Accessors and views in the buffer's order: indices, static attributes, frame 0, the targets,
 // times, weights (the targets' accessors last, spliced in as text).
 std::string GltfWriter::json(bool placeholders) const {
-  const Layout at(vertex_count_, faces_.size(), frame_count_, static_bytes(), scene_.normals);
+  const GltfLayout at(vertex_count_, faces_.size(), frame_count_, static_bytes(), scene_.normals);
   const uint64_t position_bytes = 12 * uint64_t(vertex_count_);
   const uint64_t frame_bytes = scene_.normals ? 2 * position_bytes : position_bytes;
   Json views = Json::array(), accessors = Json::array();
@@ -156,6 +202,8 @@ std::string GltfWriter::json(bool placeholders) const {
     primitive["indices"] = accessors.size() - 1;
   }
   add_static_attributes(scene_, at.statics, vertex_count_, &views, &accessors, &primitive);
+  Json doc = {{"asset", {{"version", "2.0"}, {"generator", "dcurve"}}}};
+  add_materials(scene_, at.base - images_bytes(scene_), &doc, &views);
   views.push_back(view(at.base, frame_bytes, kArrayBuffer));
   accessors.push_back(position_accessor(int(views.size() - 1), 0, vertex_count_, bounds_.empty() ? std::array<float, 6>{} : bounds_[0], placeholders));
   primitive["attributes"]["POSITION"] = accessors.size() - 1;
@@ -164,27 +212,17 @@ std::string GltfWriter::json(bool placeholders) const {
     primitive["attributes"]["NORMAL"] = accessors.size() - 1;
   }
   Json mesh = {{"name", scene_.placement.mesh_name.empty() ? "dcurve" : scene_.placement.mesh_name}};
-  Json doc = {{"asset", {{"version", "2.0"}, {"generator", "dcurve"}}}};
+  if (frame_count_ > 1) primitive["targets"] = Json::array({kTargetsMark});
+  const size_t materials = doc.contains("materials") ? doc["materials"].size() : 0;
+  mesh["primitives"] = group_primitives(scene_, primitive, faces_.empty() ? -1 : 0, materials, &accessors);
   TargetText targets;
   if (frame_count_ > 1) {
-    views.push_back(view(at.times, at.weights - at.times, 0));
-    Json times = accessor(int(views.size() - 1), 0, frame_count_, "SCALAR", kFloat);
-    times["min"] = {placeholders ? kLongestNumber : double(key_time(0))};
-    times["max"] = {placeholders ? kLongestNumber : double(key_time(frame_count_ - 1))};
-    accessors.push_back(times);
-    views.push_back(view(at.weights, at.end - at.weights, 0));
-    accessors.push_back(accessor(int(views.size() - 1), 0, uint64_t(frame_count_) * (frame_count_ - 1), "SCALAR", kFloat));
-    // The weights animation: key i turns target i - 1 fully on (key 0: none).
-    Json sampler = {{"input", accessors.size() - 2}, {"output", accessors.size() - 1}, {"interpolation", "LINEAR"}};
-    Json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
-    doc["animations"] = Json::array({{{"name", "frames"}, {"samplers", {sampler}}, {"channels", {channel}}}});
-    mesh["weights"] = std::vector<double>(frame_count_ - 1, 0.0);
+    add_weights_animation(at, placeholders, &doc, &mesh, &views, &accessors);
+    // The targets' accessors last: their indices follow from the count of those before.
     views.push_back(view(at.targets, at.times - at.targets, kArrayBuffer));
     targets = target_text(int(views.size() - 1), accessors.size(), placeholders);
     accessors.push_back(kTargetsMark);
-    primitive["targets"] = Json::array({kTargetsMark});
   }
-  mesh["primitives"] = Json::array({primitive});
   doc["bufferViews"] = views;
   doc["accessors"] = accessors;
   doc["meshes"] = Json::array({mesh});
@@ -195,11 +233,29 @@ std::string GltfWriter::json(bool placeholders) const {
   std::string text = doc.dump();
   if (frame_count_ > 1) {  // located by their keys: a name from the input may spell the mark
     const std::string mark = Json(kTargetsMark).dump(), in_primitive = "\"targets\":[" + mark + "]";
-    const size_t list = text.find(in_primitive);
-    text.replace(list, in_primitive.size(), "\"targets\":[" + targets.targets + "]");
     text.replace(text.find(mark, text.find("\"accessors\":[")), mark.size(), targets.accessors);
+    const std::string list = "\"targets\":[" + targets.targets + "]";
+    for (size_t at = text.find(in_primitive); at != std::string::npos; at = text.find(in_primitive, at + list.size()))
+      text.replace(at, in_primitive.size(), list);
   }
   return text;
+}
+
+// The weights animation: key i at the input's first key time + i / fps turns target i - 1
+// fully on (key 0: none).
+void GltfWriter::add_weights_animation(const GltfLayout& at, bool placeholders, Json* doc, Json* mesh, Json* views,
+                                       Json* accessors) const {
+  views->push_back(view(at.times, at.weights - at.times, 0));
+  Json times = accessor(int(views->size() - 1), 0, frame_count_, "SCALAR", kFloat);
+  times["min"] = {placeholders ? kLongestNumber : double(key_time(0))};
+  times["max"] = {placeholders ? kLongestNumber : double(key_time(frame_count_ - 1))};
+  accessors->push_back(times);
+  views->push_back(view(at.weights, at.end - at.weights, 0));
+  accessors->push_back(accessor(int(views->size() - 1), 0, uint64_t(frame_count_) * (frame_count_ - 1), "SCALAR", kFloat));
+  Json sampler = {{"input", accessors->size() - 2}, {"output", accessors->size() - 1}, {"interpolation", "LINEAR"}};
+  Json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
+  (*doc)["animations"] = Json::array({{{"name", "frames"}, {"samplers", {sampler}}, {"channels", {channel}}}});
+  (*mesh)["weights"] = std::vector<double>(frame_count_ - 1, 0.0);
 }
 
 float GltfWriter::key_time(uint32_t frame) const {
@@ -257,6 +313,12 @@ bool GltfWriter::open(const std::string& path, bool replace, std::string* error)
   if (!out_.write(head.data(), head.size(), error) || !put(faces_.data(), 4 * faces_.size(), error)) return false;
   for (const GltfScene::Attribute& a : scene_.attributes)
     if (!put(a.values.data(), 4 * a.values.size(), error)) return false;
+  for (const MaterialImage& image : scene_.images) {
+    const uint8_t zeros[3] = {0, 0, 0};
+    if (!put(image.bytes.data(), image.bytes.size(), error) ||
+        !put(zeros, padded4(image.bytes.size()) - image.bytes.size(), error))
+      return false;
+  }
   return true;
 }
 

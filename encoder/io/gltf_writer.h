@@ -13,12 +13,15 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "codec/common/render_mesh.h"
 #include "encoder/io/output_file.h"
 
 namespace dcurve {
 
 struct TargetText;
+struct GltfLayout;
 
 // What the output carries besides the frames: static attributes written once (TEXCOORD_0,
 // COLOR_0, ... per vertex of the output), and the input's placement: node transform and
@@ -32,6 +35,13 @@ struct GltfScene {
   std::vector<Attribute> attributes;
   Placement placement;
   bool normals = false;  // each frame comes with its normals (NORMAL and the targets' NORMAL)
+  // Face groups, one primitive each: the writer's faces are ordered by group, group g's
+  // group_faces[g] triangles drawn with material group_materials[g] (-1: none).
+  std::vector<uint32_t> group_faces;
+  std::vector<int> group_materials;
+  // The materials, textures, samplers and images (MATL's JSON) and the images' bytes.
+  std::string materials_json;
+  std::vector<MaterialImage> images;
 };
 
 class GltfWriter {
@@ -61,6 +71,9 @@ class GltfWriter {
   bool write_animation_data(std::string* error);
   std::string json(bool placeholders) const;
   TargetText target_text(int view_index, uint64_t first_accessor, bool placeholders) const;
+  void add_weights_animation(const GltfLayout& at, bool placeholders, nlohmann::ordered_json* doc,
+                             nlohmann::ordered_json* mesh, nlohmann::ordered_json* views,
+                             nlohmann::ordered_json* accessors) const;
   uint64_t buffer_bytes() const;
   uint64_t static_bytes() const;
   float key_time(uint32_t frame) const;  // the input's first key time, then one frame apart

@@ -74,7 +74,8 @@ void keep_vertices(const std::vector<uint32_t>& source, uint32_t vertex_count, A
 
 // Faces over vertices, corners over render vertices; drops triangles that use a vertex twice.
 void split_faces(const std::vector<uint32_t>& source, Animation* anim) {
-  std::vector<uint32_t> faces, corners;
+  std::vector<uint32_t> faces, corners, groups;
+  const std::vector<uint32_t>& face_group = anim->render.face_group;
   size_t dropped = 0;
   for (size_t t = 0; t + 2 < anim->faces.size(); t += 3) {
     const uint32_t* c = &anim->faces[t];
@@ -85,7 +86,9 @@ void split_faces(const std::vector<uint32_t>& source, Animation* anim) {
     }
     faces.insert(faces.end(), {a, b, d});
     corners.insert(corners.end(), {c[0], c[1], c[2]});
+    if (!face_group.empty()) groups.push_back(face_group[t / 3]);
   }
+  anim->render.face_group.swap(groups);
   if (dropped > 0)
     anim->notes.push_back("dropped " + std::to_string(dropped) +
                           " triangles whose corners sit at one point in every frame (zero area, nothing to draw)");
@@ -98,7 +101,7 @@ void split_faces(const std::vector<uint32_t>& source, Animation* anim) {
 void weld_copies(Animation* anim, std::vector<AnimationRender::Attribute> attributes) {
   std::vector<uint32_t> source;
   const uint32_t vertices = number_vertices(find_representatives(*anim), &source);
-  if (vertices == anim->vertex_count && attributes.empty()) return;
+  if (vertices == anim->vertex_count && attributes.empty() && anim->render.groups.empty()) return;
   keep_vertices(source, vertices, anim);
   split_faces(source, anim);
   anim->render.source = std::move(source);

@@ -14,8 +14,8 @@ namespace dcurve {
 // static attributes (values per render vertex). Vertices equal in every frame, bit for bit,
 // become one, numbered in order of first appearance; anim->render maps the render vertices
 // (in their input order) to them and keeps the attributes. Triangles left with a vertex
-// twice (zero area in every frame) are dropped with a note. Without copies or attributes
-// anim->render stays empty.
+// twice (zero area in every frame) are dropped with a note (and from render.face_group).
+// Without copies, attributes or groups anim->render stays empty.
 void weld_copies(Animation* anim, std::vector<AnimationRender::Attribute> attributes);
 
 }  // namespace dcurve
