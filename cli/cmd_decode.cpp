@@ -1,3 +1,5 @@
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +11,7 @@
 #include "codec/common/error.h"
 #include "codec/common/inbetween.h"
 #include "codec/common/render_mesh.h"
+#include "encoder/io/files.h"
 #include "decoder/dcurve.hpp"
 
 namespace dcurve::cli {
@@ -79,6 +82,25 @@ void describe_render_output(const Decoder& dec, OutputSpec* spec) {
   }
 }
 
+// OBJ output keeps vertex i as vertex i and adds what the file has of UVs, normals (per
+// render vertex, per frame) and material groups, with the OBJ's material library.
+void describe_obj_output(const Decoder& dec, OutputSpec* spec) {
+  if (!dec.render_source() || dec.face_count() == 0) return;
+  ObjRender& obj = spec->obj;
+  const size_t R = dec.render_vertex_count();
+  obj.source.assign(dec.render_source(), dec.render_source() + R);
+  const uint32_t* faces = dec.group_faces() ? dec.group_faces() : dec.render_faces();
+  obj.corners.assign(faces, faces + 3 * size_t(dec.face_count()));
+  if (dec.uvs()) obj.uv.assign(dec.uvs(), dec.uvs() + 2 * R);
+  for (uint32_t g = 0; g < dec.group_count(); ++g) {
+    obj.group_faces.push_back(dec.group(g).face_count);
+    obj.group_names.push_back(dec.group_name(g));
+  }
+  const nlohmann::json m = nlohmann::json::parse(dec.materials_json(), nullptr, false);
+  if (m.is_object() && m.contains("objMaterialLibrary") && m["objMaterialLibrary"].is_string())
+    obj.material_library = m["objMaterialLibrary"].get<std::string>();
+}
+
 OutputSpec output_spec(const DecodeOpts& o, const Decoder& dec, uint32_t frames) {
   OutputSpec spec;
   spec.path = o.output;
@@ -94,6 +116,9 @@ OutputSpec output_spec(const DecodeOpts& o, const Decoder& dec, uint32_t frames)
   spec.frame_rate = frames > 1 && duration > 0 ? (frames - 1) / duration : dec.frame_rate();
   spec.start_time = dec.start_time();
   if (o.kind == OutputKind::Gltf) describe_render_output(dec, &spec);
+  if ((o.kind == OutputKind::Mesh && lowercase_extension(o.output) == ".obj") ||
+      (o.kind == OutputKind::Folder && o.format == "obj"))
+    describe_obj_output(dec, &spec);
   return spec;
 }
 
@@ -104,15 +129,15 @@ int run_decode(const DecodeOpts& o, const Messages& msg) {
   if (!dec) return msg.error(err);
   std::vector<double> times;
   if (!decode_times(o, *dec, &times, &err)) return msg.error(err);
-  auto sink = open_output(output_spec(o, *dec, uint32_t(times.size())), &err);
+  const OutputSpec spec = output_spec(o, *dec, uint32_t(times.size()));
+  const bool spec_obj_empty = spec.obj.empty();
+  auto sink = open_output(spec, &err);
   if (!sink) return msg.error(err);
   std::vector<float> xyz(size_t(dec->vertex_count()) * 3);
-  const bool render = o.kind == OutputKind::Gltf;
+  const bool render = o.kind == OutputKind::Gltf, obj = !spec_obj_empty;
   std::vector<float> render_xyz, normals;
-  if (render) {
-    render_xyz.resize(size_t(dec->render_vertex_count()) * 3);
-    if (dec->face_count() > 0) normals.resize(render_xyz.size());
-  }
+  if (render) render_xyz.resize(size_t(dec->render_vertex_count()) * 3);
+  if ((render || obj) && dec->face_count() > 0) normals.resize(size_t(dec->render_vertex_count()) * 3);
   auto cursor = dec->make_cursor();
   Inbetween rule;
   if (inbetween_from_name(o.interp.c_str(), &rule)) cursor->set_interpolation(Interpolation(int(rule)));
@@ -120,10 +145,8 @@ int run_decode(const DecodeOpts& o, const Messages& msg) {
   for (size_t i = 0; i < times.size(); ++i) {
     Error e;
     if (!cursor->evaluate(times[i], xyz.data(), &e)) return msg.error(o.input + ": " + e.message);
-    if (render) {
-      dec->render_positions(xyz.data(), render_xyz.data());
-      if (!normals.empty()) dec->compute_render_normals(xyz.data(), normals.data());
-    }
+    if (render) dec->render_positions(xyz.data(), render_xyz.data());
+    if (!normals.empty()) dec->compute_render_normals(xyz.data(), normals.data());
     const float* out = render ? render_xyz.data() : xyz.data();
     if (!sink->add(uint32_t(i), out, normals.empty() ? nullptr : normals.data(), &err)) return msg.error(err);
     if (progress) progress(double(i + 1) / double(times.size()));

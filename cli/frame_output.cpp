@@ -7,6 +7,7 @@
 #include "encoder/io/files.h"
 #include "encoder/io/frames.h"
 #include "encoder/io/gltf_writer.h"
+#include "encoder/io/mesh_writer.h"
 #include "encoder/io/output_file.h"
 #include "encoder/io/output_folder.h"
 #include "encoder/io/point_cache.h"
@@ -14,21 +15,30 @@
 namespace dcurve::cli {
 namespace {
 
+// An OBJ with the file's render data (UVs, normals, groups), when it has some.
+bool with_render(const OutputSpec& spec, const std::string& ext) { return ext == ".obj" && !spec.obj.empty(); }
+
 // One mesh, written when its frame is complete.
 class MeshSink : public FrameSink {
  public:
   explicit MeshSink(const OutputSpec& spec) : spec_(spec) {}
-  bool add(uint32_t, const float* xyz, const float*, std::string*) override {
+  bool add(uint32_t, const float* xyz, const float* normals, std::string*) override {
     xyz_.assign(xyz, xyz + size_t(spec_.vertex_count) * 3);
+    if (normals) normals_.assign(normals, normals + 3 * spec_.obj.source.size());
     return true;
   }
   bool finish(std::string* error) override {
-    return write_mesh(spec_.path, xyz_.data(), spec_.vertex_count, spec_.faces, error, spec_.force);
+    if (!with_render(spec_, lowercase_extension(spec_.path)))
+      return write_mesh(spec_.path, xyz_.data(), spec_.vertex_count, spec_.faces, error, spec_.force);
+    std::string bytes;
+    obj_render_bytes(xyz_.data(), spec_.vertex_count, spec_.obj, normals_.empty() ? nullptr : normals_.data(), &bytes);
+    OutputFile out;
+    return out.open(spec_.path, spec_.force, error) && out.write(bytes.data(), bytes.size(), error) && out.commit(error);
   }
 
  private:
   OutputSpec spec_;
-  std::vector<float> xyz_;
+  std::vector<float> xyz_, normals_;
 };
 
 class GltfSink : public FrameSink {
@@ -69,7 +79,12 @@ class FolderSink : public FrameSink {
     spec_ = spec;
     return folder_.open(spec.path, spec.force, error);
   }
-  bool add(uint32_t index, const float* xyz, const float*, std::string* error) override {
+  bool add(uint32_t index, const float* xyz, const float* normals, std::string* error) override {
+    if (with_render(spec_, "." + spec_.folder_format)) {
+      std::string bytes;
+      obj_render_bytes(xyz, spec_.vertex_count, spec_.obj, normals, &bytes);
+      return folder_.write_file(frame_file_name(index, spec_.folder_format), bytes.data(), bytes.size(), error);
+    }
     return write_folder_frame(&folder_, index, spec_.folder_format, xyz, spec_.vertex_count, spec_.faces, error);
   }
   bool finish(std::string* error) override { return folder_.commit(error); }

@@ -11,6 +11,7 @@
 
 #include "cli/output_path.h"
 #include "encoder/io/gltf_writer.h"
+#include "encoder/io/mesh_writer.h"
 
 namespace dcurve::cli {
 
@@ -24,6 +25,7 @@ struct OutputSpec {
   double frame_rate = 30;
   double start_time = 0;              // seconds of the first frame (PC2 start frame, MDD and glTF times)
   GltfScene gltf;                     // a glTF output's static attributes, placement and normals
+  ObjRender obj;                      // an OBJ output's UVs, groups and material library
   std::vector<std::string> inputs;    // files the command reads: never the output
 };
 

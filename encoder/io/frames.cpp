@@ -12,6 +12,7 @@
 #include "encoder/io/output_folder.h"
 #include "encoder/io/frame_order.h"
 #include "encoder/io/mesh_writer.h"
+#include "encoder/io/obj_corners.h"
 #include "encoder/io/polygon_reader.h"
 #include "encoder/io/text_mesh_check.h"
 
@@ -164,7 +165,11 @@ bool read_frame_folder(const std::string& dir, Animation* anim, std::string* err
     }
     anim->frames.push_back(std::move(xyz));
   }
-  return true;
+  // An OBJ's UVs, normals and materials, as frame 0 gives them (they do not animate).
+  if (lowercase_extension(files[0]) != ".obj") return true;
+  ObjCorners corners;
+  if (!read_obj_corners(files[0], &corners, error)) return false;
+  return obj_render(corners, anim, error) || fail(error, files[0] + ": " + *error);
 }
 
 std::string frame_file_name(size_t index, const std::string& ext) {

@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <cstring>
+#include <string>
+#include <vector>
 
 namespace dcurve {
 namespace {
@@ -53,7 +55,44 @@ void ply_bytes(const float* xyz, uint32_t vertex_count, const std::vector<uint32
   }
 }
 
+void append_corner(std::string* out, uint32_t vertex, uint32_t render, bool uv, bool normal) {
+  out->append(std::to_string(vertex + 1));
+  if (uv || normal) out->push_back('/');
+  if (uv) out->append(std::to_string(render + 1));
+  if (normal) out->append("/" + std::to_string(render + 1));
+}
+
 }  // namespace
+
+void obj_render_bytes(const float* xyz, uint32_t vertex_count, const ObjRender& r, const float* normals,
+                      std::string* bytes) {
+  bytes->clear();
+  if (!r.material_library.empty()) bytes->append("mtllib " + r.material_library + "\n");
+  append_vertices(bytes, "v ", xyz, vertex_count);
+  for (size_t i = 0; i < r.uv.size(); i += 2) {
+    bytes->append("vt ");
+    append_float(bytes, r.uv[i]);
+    bytes->push_back(' ');
+    append_float(bytes, 1.f - r.uv[i + 1]);  // OBJ's v runs up the image
+    bytes->push_back('\n');
+  }
+  if (normals) append_vertices(bytes, "vn ", normals, uint32_t(r.source.size()));
+  const std::vector<uint32_t> one_group = {uint32_t(r.corners.size() / 3)};
+  const std::vector<uint32_t>& groups = r.group_faces.empty() ? one_group : r.group_faces;
+  size_t t = 0;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    if (g < r.group_names.size() && !r.group_names[g].empty()) bytes->append("usemtl " + r.group_names[g] + "\n");
+    for (uint32_t end = uint32_t(t) + groups[g]; t < end; ++t) {
+      bytes->append("f");
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t id = r.corners[3 * t + k];
+        bytes->push_back(' ');
+        append_corner(bytes, r.source[id], id, !r.uv.empty(), normals != nullptr);
+      }
+      bytes->push_back('\n');
+    }
+  }
+}
 
 bool mesh_file_bytes(const std::string& extension, const float* xyz, uint32_t vertex_count,
                      const std::vector<uint32_t>& faces, std::string* bytes) {
