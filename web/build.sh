@@ -52,9 +52,12 @@ exported=_malloc,_free,_dcurve_open_memory,_dcurve_close,_dcurve_vertex_count,_d
 _dcurve_face_count,_dcurve_faces,_dcurve_frame_rate,_dcurve_tolerance,_dcurve_rest_diagonal,\
 _dcurve_chunk_frames,_dcurve_memory_bytes,_dcurve_compute_normals,_dcurve_cursor_create,\
 _dcurve_cursor_destroy,_dcurve_cursor_evaluate,_dcurve_cursor_evaluate_frame,_dcurve_cursor_memory_bytes,\
-_dcurve_status_name
+_dcurve_status_name,_dcurve_render_vertex_count,_dcurve_render_source,_dcurve_render_faces,\
+_dcurve_attribute_components,_dcurve_attribute,_dcurve_render_positions,_dcurve_compute_render_normals,\
+_dcurve_group_count,_dcurve_group,_dcurve_group_faces,_dcurve_materials_json,_dcurve_image_count,_dcurve_image,\
+_dcurve_start_time,_dcurve_world_matrix,_dcurve_mesh_name,_dcurve_node_name
 em++ -Os "$out"/obj/*.o -o "$out/dcurve_wasm.mjs" \
   -sMODULARIZE=1 -sEXPORT_ES6=1 -sEXPORT_NAME=createDcurveModule -sENVIRONMENT=web \
   -sFILESYSTEM=0 -sALLOW_MEMORY_GROWTH=1 -sEXPORTED_FUNCTIONS="$exported" \
-  -sEXPORTED_RUNTIME_METHODS=HEAPU8,HEAPF32,HEAPU32 --no-entry
+  -sEXPORTED_RUNTIME_METHODS=HEAPU8,HEAPF32,HEAPU32,HEAPF64 --no-entry
 echo "web/build.sh: built $out/dcurve_wasm.mjs and dcurve_wasm.wasm"

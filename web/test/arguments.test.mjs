@@ -57,17 +57,21 @@ test("evaluate's normals output is checked before anything is decoded", async ()
   flat.close();
 });
 
-test("evaluate and evaluateFrame refuse bad outputs, times and frame numbers", async () => {
+test("evaluate, evaluateFrame and their render forms refuse bad outputs, times and frame numbers", async () => {
   const dcurve = await loadDcurve();
   const dec = dcurve.open(vector("chunked"));
   const n = dec.vertexCount * 3;
   for (const [out, what] of [[new Float32Array(n - 1), "short"], [new Float64Array(n), "Float64Array"], [null, "null"]]) {
     assertInvalid(() => dec.evaluate(0.5, out), `evaluate into ${what}`);
     assertInvalid(() => dec.evaluateFrame(0, out), `evaluateFrame into ${what}`);
+    assertInvalid(() => dec.evaluateRender(0.5, out), `evaluateRender into ${what}`);
+    assertInvalid(() => dec.evaluateFrameRender(0, out), `evaluateFrameRender into ${what}`);
   }
   const xyz = new Float32Array(n);
   for (const t of [NaN, "0.5", undefined, Symbol("t")]) assertInvalid(() => dec.evaluate(t, xyz), `t = ${String(t)}`);
   for (const f of [1.5, NaN, "1", undefined]) assertInvalid(() => dec.evaluateFrame(f, xyz), `frame ${String(f)}`);
+  assertInvalid(() => dec.evaluateRender(NaN, xyz), "evaluateRender at t = NaN");
+  assertInvalid(() => dec.evaluateFrameRender(0.5, xyz), "evaluateFrameRender of frame 0.5");
   dec.evaluateFrame(1, xyz); // still usable
   dec.close();
   assertInvalid(() => dec.evaluate(0, xyz), "a closed decoder");
