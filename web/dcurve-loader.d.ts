@@ -1,6 +1,6 @@
 // The types of dcurve-loader.js. test/types.test.mjs checks that they name exactly what the
 // module exports and what its objects hold.
-import { BufferGeometry, Loader, LoadingManager } from "three";
+import { BufferGeometry, Loader, LoadingManager, Material, Mesh, Points } from "three";
 
 import { DcurveDecoder } from "./dcurve.js";
 
@@ -21,12 +21,21 @@ export class DcurveLoader extends Loader<DcurveAnimation> {
   parse(buffer: ArrayBuffer | ArrayBufferView): Promise<DcurveAnimation>;
 }
 
-/** A .dcrv playing on a BufferGeometry: index from the faces, dynamic positions and (with
- * faces) normals, rewritten by update, setTime and setT. */
+/** A .dcrv playing on a BufferGeometry over its render vertices: dynamic positions and (with
+ * faces) normals, rewritten by update, setTime and setT; the file's uv, uv1 and color
+ * attributes; an index in face group order with a geometry group per face group. */
 export class DcurveAnimation {
-  constructor(decoder: DcurveDecoder);
+  /** `materials`: one per face group (DcurveLoader builds them from the file's glTF
+   * materials); without them `object` has one default material. */
+  constructor(decoder: DcurveDecoder, materials?: Material[]);
   decoder: DcurveDecoder;
   geometry: BufferGeometry;
+  /** The file's materials as MeshStandardMaterials, one per geometry group (groups of one
+   * material share it); [] for a file without materials. */
+  materials: Material[];
+  /** What to add to a scene: a Mesh (Points for a file without faces) with `materials`,
+   * named after the input's node and placed by its world matrix. */
+  object: Mesh | Points;
   /** The file's frame rate, or 30 when it does not say. */
   fps: number;
   /** Seconds from the first frame to the last. */
@@ -43,6 +52,7 @@ export class DcurveAnimation {
   setTime(seconds: number): this;
   /** Shows the mesh at t in [0, 1] of the clip. */
   setT(t: number): this;
-  /** Disposes of the geometry and closes the decoder. */
+  /** Disposes of the geometry and the materials and textures the animation made, and closes
+   * the decoder. */
   dispose(): void;
 }

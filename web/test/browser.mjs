@@ -23,6 +23,9 @@ export const chromiumPath = () => findExisting("Chromium", "CHROMIUM", ["/usr/bi
 export const nativePath = () => findExisting("the native reference (cmake --build build --target dcurve_web_native)",
   "DCURVE_WEB_NATIVE", [`${repo}build/web/dcurve_web_native`]);
 
+// The native encoder and decoder program.
+export const dcurvePath = () => process.env.DCURVE ?? `${repo}build/cli/dcurve`;
+
 // Runs the native reference: `positions FILE T...` or `bench FILE PASSES`.
 export function native(...args) {
   return execFileSync(nativePath(), args.map(String), { encoding: "utf8", maxBuffer: 1 << 28 });

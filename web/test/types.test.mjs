@@ -3,13 +3,15 @@
 // exactly the members its objects have at run time. Skipped without the typescript package
 // (a devDependency); web/test.sh also type-checks them with `tsc --noEmit`.
 import assert from "node:assert/strict";
-import { readFileSync } from "node:fs";
+import { mkdtempSync, readFileSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
 import { test } from "node:test";
 
 import { Loader } from "three";
 
 import * as dcurveJs from "../dcurve.js";
 import * as loaderJs from "../dcurve-loader.js";
+import { encodeTextured } from "./textured.mjs";
 
 const ts = await import("typescript").then((m) => m.default, () => null);
 const vector = readFileSync(new URL("../../format_spec/test_vectors/sheet_compact_faces.dcrv", import.meta.url));
@@ -60,4 +62,23 @@ test("dcurve-loader.d.ts declares what dcurve-loader.js exports", { skip: !ts &&
   const anim = await loader.parse(vector);
   assert.deepEqual(members.DcurveAnimation, runtimeMembers(anim));
   anim.dispose();
+});
+
+test("dcurve.d.ts declares the render data as the decoder gives it", { skip: !ts && "no typescript package" }, async () => {
+  const { members } = declarations("dcurve.d.ts");
+  const dir = mkdtempSync(`${tmpdir()}/dcurve-types-`);
+  try {
+    const dec = (await dcurveJs.loadDcurve()).open(readFileSync(encodeTextured(dir).file));
+    const keys = (object) => Object.keys(object).sort();
+    assert.deepEqual(members.DcurveGroup, keys(dec.groups()[0]));
+    assert.deepEqual(members.DcurveImage, keys(dec.images()[0]));
+    assert.deepEqual(members.DcurveAttribute, keys(dec.attributes().uv));
+    // Every attribute a file may hold: the file's own are some of them.
+    assert.deepEqual(members.DcurveAttributes, ["color", "normal", "uv", "uv1"]);
+    assert.ok(keys(dec.attributes()).every((name) => members.DcurveAttributes.includes(name)));
+    assert.ok(keys(dec.materials()).every((name) => members.DcurveMaterials.includes(name)), keys(dec.materials()).join());
+    dec.close();
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
 });

@@ -2,8 +2,9 @@
 // and panel; the shown mesh through three.js's devtools hook): it loads a .dcrv (a waving
 // sheet the native encoder writes), plays it, shows at several t the positions the native
 // decoder gives, finds the error against the input OBJ frames within the file's tolerance,
-// and draws the mesh (a canvas that is not blank; the screenshot's path is printed). Needs
-// the wasm build, Chromium, build/cli/dcurve and build/web/dcurve_web_native.
+// and draws the mesh (a canvas that is not blank; the screenshot's path is printed); a textured
+// file's texture decodes in the loader and shows in the page. Needs the wasm build, Chromium,
+// build/cli/dcurve and build/web/dcurve_web_native.
 import assert from "node:assert/strict";
 import { copyFileSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -12,15 +13,17 @@ import { fileURLToPath } from "node:url";
 
 import { defaultWasmUrl } from "../dcurve.js";
 import { nativePositions, openViewer } from "./browser.mjs";
+import { encodeTextured } from "./textured.mjs";
 import { encodeWave } from "./wave.mjs";
 
 // On the slider's 0.001 steps; 0.123 and 0.37 fall between frames.
 const TIMES = [0, 0.123, 0.37, 0.5, 0.8, 1];
 
-let dir, file, viewer;
+let dir, file, textured, viewer;
 before(async () => {
   dir = mkdtempSync(`${tmpdir()}/dcurve-web-`);
   file = encodeWave(dir);
+  textured = encodeTextured(dir).file;
   copyFileSync(fileURLToPath(defaultWasmUrl), `${dir}/moved.wasm`);
   viewer = await openViewer(dir, "wave.dcrv");
 });
@@ -88,30 +91,39 @@ test("the page's error against the input frames is within the tolerance", async 
   assert.ok(Number(ofL) > 0 && Number(ofL) <= tolerance * (1 + 5e-4), info["max error"]);
 });
 
-test("the canvas shows the mesh", async () => {
-  const { page, errors } = viewer;
-  await page.fill("#scrub", "0.5");
+// Saves a screenshot as out/NAME.png (its path printed), then counts the pixels of another,
+// with the panel painted over in the background's colour: { covered } differ from the
+// background, { green } are clearly green (the textured file's texture is a green pixel).
+async function screenshotPixels(name) {
+  const { page } = viewer;
   const background = await viewer.background();
   const out = fileURLToPath(new URL("../out/", import.meta.url));
   mkdirSync(out, { recursive: true });
-  await page.screenshot({ path: `${out}viewer.png` });
-  // The panel painted over in the background's colour: only the mesh differs from it.
+  await page.screenshot({ path: `${out}${name}.png` });
   const png = await page.screenshot({ mask: [page.locator("#panel")], maskColor: background });
-  const { covered, total } = await page.evaluate(async ({ png, background }) => {
+  const counts = await page.evaluate(async ({ png, background }) => {
     const image = await createImageBitmap(await (await fetch(`data:image/png;base64,${png}`)).blob());
     const canvas = new OffscreenCanvas(image.width, image.height);
     const context = canvas.getContext("2d");
     context.drawImage(image, 0, 0);
     const pixels = context.getImageData(0, 0, image.width, image.height).data;
     const [r, g, b] = [1, 3, 5].map((i) => parseInt(background.slice(i, i + 2), 16));
-    let covered = 0;
-    for (let i = 0; i < pixels.length; i += 4)
+    let covered = 0, green = 0;
+    for (let i = 0; i < pixels.length; i += 4) {
       if (Math.abs(pixels[i] - r) + Math.abs(pixels[i + 1] - g) + Math.abs(pixels[i + 2] - b) > 12) ++covered;
-    return { covered, total: image.width * image.height };
+      if (pixels[i + 1] > 2 * Math.max(pixels[i], pixels[i + 2]) + 20) ++green;
+    }
+    return { covered, green, total: image.width * image.height };
   }, { png: png.toString("base64"), background });
-  console.log(`screenshot: ${out}viewer.png (${covered} of ${total} pixels drawn)`);
+  console.log(`screenshot: ${out}${name}.png (${counts.covered} of ${counts.total} pixels drawn, ${counts.green} green)`);
+  return counts;
+}
+
+test("the canvas shows the mesh", async () => {
+  await viewer.page.fill("#scrub", "0.5");
+  const { covered, total } = await screenshotPixels("viewer");
   assert.ok(covered > total * 0.02, `only ${covered} of ${total} pixels differ from the background`);
-  assert.deepEqual(errors, []);
+  assert.deepEqual(viewer.errors, []);
 });
 
 test("the page adds no globals (tests drive it from outside)", async () => {
@@ -122,6 +134,30 @@ test("the page adds no globals (tests drive it from outside)", async () => {
     return Object.getOwnPropertyNames(window).filter((name) => !blank.has(name)).sort();
   });
   assert.deepEqual(added, ["__THREE__"], "three.js's revision only"); // the frame has the tests' hook too
+});
+
+test("a textured file: the loader decodes its texture, and the page shows it", async () => {
+  const { page } = viewer;
+  const loaded = await page.evaluate(async () => {
+    const { DcurveLoader } = await import("/dcurve-loader.js");
+    const anim = await new DcurveLoader().loadAsync("/data/textured.dcrv");
+    const result = { groups: anim.geometry.groups.length, width: anim.materials[0].map?.image?.width };
+    anim.dispose(); // closes the image: read it before
+    return result;
+  });
+  assert.deepEqual(loaded, { groups: 2, width: 1 });
+
+  await page.setInputFiles("#file", textured);
+  await page.waitForFunction(() => document.getElementById("info").textContent.includes("materials"));
+  assert.equal((await viewer.info()).materials, "cloth (texture 1x1), trim");
+  const shown = await page.evaluate(() => {
+    const mesh = window.__THREE_DEVTOOLS__.find("isScene").children.find((c) => c.geometry);
+    return { name: mesh.name, maps: mesh.material.map((m) => m.map?.image?.width ?? null) };
+  });
+  assert.deepEqual(shown, { name: "cloth", maps: [1, null] });
+  const { green, total } = await screenshotPixels("textured");
+  assert.ok(green > total * 0.005, `only ${green} of ${total} pixels show the green texture`);
+  assert.deepEqual(viewer.errors, []);
 });
 
 test("a damaged file chosen in the page shows the decoder's message", async () => {

@@ -3,7 +3,7 @@
 import { execFileSync } from "node:child_process";
 import { mkdirSync, writeFileSync } from "node:fs";
 
-import { repo } from "./browser.mjs";
+import { dcurvePath } from "./browser.mjs";
 
 function frameObj(n, f, frames) {
   const lines = [];
@@ -26,9 +26,8 @@ export function encodeWave(dir, { n = 24, frames = 30 } = {}) {
   const folder = `${dir}/frames`;
   mkdirSync(folder, { recursive: true });
   for (let f = 0; f < frames; ++f) writeFileSync(`${folder}/frame_${String(f).padStart(4, "0")}.obj`, frameObj(n, f, frames));
-  const dcurve = process.env.DCURVE ?? `${repo}build/cli/dcurve`;
   // The quick settings (one trial grid, no low-rank search: seconds less), 4 chunks of 8 frames.
   const quick = ["--effort", "1", "--low-rank", "off", "--chunk-frames", "8"];
-  execFileSync(dcurve, ["encode", folder, "-o", `${dir}/wave.dcrv`, "--fps", "30", "-q", ...quick]);
+  execFileSync(dcurvePath(), ["encode", folder, "-o", `${dir}/wave.dcrv`, "--fps", "30", "-q", ...quick]);
   return `${dir}/wave.dcrv`;
 }

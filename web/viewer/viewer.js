@@ -1,9 +1,11 @@
 // The viewer page: open or drop a .dcrv, play, scrub, set the speed, see the file's figures
-// and the decode time per frame, and optionally the error against a folder of OBJ frames.
+// and the decode time per frame, and optionally the error against a folder of OBJ frames. A
+// file with materials shows them (textures too), placed where its input put the mesh.
 // `?file=URL` opens a file at start. Nothing here is for tests: they drive the page from
 // outside (web/test/browser.mjs), through its controls and three.js's devtools hook.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
+import { RoomEnvironment } from "three/addons/environments/RoomEnvironment.js";
 
 import { DcurveLoader } from "../dcurve-loader.js";
 
@@ -18,11 +20,12 @@ scene.add(new THREE.HemisphereLight(0xffffff, 0x404050, 1.5));
 const sun = new THREE.DirectionalLight(0xffffff, 2);
 sun.position.set(1, 2, 3);
 scene.add(sun);
+let room = null; // the environment of files with materials, made when first needed
 const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
 const controls = new OrbitControls(camera, renderer.domElement);
 const clock = new THREE.Clock();
 
-const state = { anim: null, mesh: null, playing: false, fileBytes: 0, name: "", decodeMs: [], referenceError: null };
+const state = { anim: null, mesh: null, ownMaterial: null, playing: false, fileBytes: 0, name: "", decodeMs: [], referenceError: null };
 
 function resize() {
   renderer.setSize(innerWidth, innerHeight, false);
@@ -31,22 +34,34 @@ function resize() {
   camera.updateProjectionMatrix();
 }
 
-// A mesh when the file has faces, else points.
+// The loader's object (a mesh, or points without faces) with the file's materials, or this
+// page's own colour when the file has none.
 function makeObject(anim) {
-  if (anim.geometry.index) {
-    const material = new THREE.MeshStandardMaterial({ color: 0x8fb3e0, roughness: 0.6, side: THREE.DoubleSide });
-    return new THREE.Mesh(anim.geometry, material);
+  const object = anim.object;
+  const fromFile = anim.materials.length > 0;
+  // glTF materials are metallic unless they say otherwise, and a metal with nothing to
+  // reflect draws black: a room to reflect, as glTF viewers give.
+  if (fromFile) room ??= new THREE.PMREMGenerator(renderer).fromScene(new RoomEnvironment(), 0.04).texture;
+  scene.environment = fromFile ? room : null;
+  if (!fromFile) {
+    object.material = state.ownMaterial = object.isMesh
+      ? new THREE.MeshStandardMaterial({ color: 0x8fb3e0, roughness: 0.6, side: THREE.DoubleSide })
+      : new THREE.PointsMaterial({ color: 0x8fb3e0, size: 3, sizeAttenuation: false });
   }
-  return new THREE.Points(anim.geometry, new THREE.PointsMaterial({ color: 0x8fb3e0, size: 3, sizeAttenuation: false }));
+  return object;
 }
 
 // Looks at the whole mesh across its thinnest extent (a sheet face-on), slightly tilted.
-function frameCamera(geometry) {
+function frameCamera(object) {
+  const { geometry } = object;
   geometry.computeBoundingBox();
-  const size = geometry.boundingBox.getSize(new THREE.Vector3()).toArray();
+  object.updateMatrixWorld();
+  // Where the file's placement puts the mesh.
+  const box = geometry.boundingBox.clone().applyMatrix4(object.matrixWorld);
+  const size = box.getSize(new THREE.Vector3()).toArray();
   const thin = size.indexOf(Math.min(...size));
   const direction = new THREE.Vector3(0.3, 0.3, 0.3).setComponent(thin, 1).normalize();
-  const sphere = geometry.boundingSphere;
+  const sphere = geometry.boundingSphere.clone().applyMatrix4(object.matrixWorld);
   const distance = sphere.radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) || 1;
   camera.position.copy(sphere.center).addScaledVector(direction, distance);
   camera.near = distance / 100;
@@ -59,9 +74,9 @@ function frameCamera(geometry) {
 function unload() {
   if (!state.anim) return;
   scene.remove(state.mesh);
-  state.mesh.material.dispose();
-  state.anim.dispose();
-  state.anim = state.mesh = null;
+  state.ownMaterial?.dispose();
+  state.anim.dispose(); // and the file's materials
+  state.anim = state.mesh = state.ownMaterial = null;
 }
 
 // Opens a .dcrv from its bytes (or a promise of them); a failure to fetch or decode is shown
@@ -83,7 +98,7 @@ async function open(bytes, name) {
   state.referenceError = null;
   state.mesh = makeObject(state.anim);
   scene.add(state.mesh);
-  frameCamera(state.anim.geometry);
+  frameCamera(state.mesh);
   for (const id of ["play", "scrub", "reference"]) $(id).disabled = false;
   showInfo();
 }
@@ -111,6 +126,8 @@ function showInfo() {
     "decode / frame": `${decodeMsAverage().toFixed(3)} ms (evaluate + normals)`,
     "decoder memory": `${d.memoryBytes.toLocaleString()} bytes`,
   };
+  if (d.renderVertexCount !== d.vertexCount) rows["render vertices"] = d.renderVertexCount.toLocaleString();
+  if (anim.materials.length) rows.materials = [...new Set(anim.materials)].map(describeMaterial).join(", ");
   const ref = state.referenceError;
   if (ref) rows["max error"] = `${ref.ofL.toExponential(3)} of L (${(ref.ofL / d.tolerance).toFixed(2)} x tolerance), ${ref.frames} frames`;
   $("info").replaceChildren(...Object.entries(rows).map(([k, v]) => {
@@ -118,6 +135,12 @@ function showInfo() {
     tr.append(Object.assign(document.createElement("td"), { textContent: k }), Object.assign(document.createElement("td"), { textContent: v }));
     return tr;
   }));
+}
+
+// "cloth (texture 1x1)": a material's name and what its map shows.
+function describeMaterial(material) {
+  const image = material.map?.image;
+  return image ? `${material.name} (texture ${image.width}x${image.height})` : material.name;
 }
 
 // One decoded time step: record its decode time and move the slider.
