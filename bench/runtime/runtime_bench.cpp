@@ -4,7 +4,8 @@
 // vertex-frames per second); the memory the decoder and cursor hold after playback against
 // the raw float32 size. Beside them, in the same process: libdraco decoding the same frames
 // (each decoded frame written by Draco at the smallest quantization that meets the file's
-// tolerance, as `dcurve bench` does) and a memcpy of them (the limit).
+// tolerance, as `dcurve bench` does), quantized delta + zstd decoding them (the strongest
+// simple baseline, DESIGN.md section 6) and a memcpy of them (the limit).
 //
 //   build/bench/runtime_bench FILE.dcrv...
 //   scripts/runtime-bench.sh: horse-gallop and a 600-frame rope-small clip, encoded first
@@ -40,7 +41,7 @@ double median_seconds(int runs, const std::function<bool()>& work) {
 struct Figures {
   uint32_t vertices = 0, frames = 0, chunk_frames = 0;
   uint64_t file_bytes = 0, raw_bytes = 0, memory_bytes = 0;
-  double open_s = 0, middle_s = 0, playback_s = 0, draco_s = -1, memcpy_s = 0;
+  double open_s = 0, middle_s = 0, playback_s = 0, draco_s = -1, memcpy_s = 0, delta_s = -1;
   int draco_bits = 0;
 };
 
@@ -95,6 +96,20 @@ void measure_draco(const Animation& anim, double tolerance, double diagonal, Fig
   });
 }
 
+// The quantized delta + zstd baseline (bench/quantized_delta.cpp) decoding the same frames:
+// the whole clip unpacked and every frame dequantized, best of up to three runs.
+void measure_quantized_delta(const Animation& anim, double tolerance, double diagonal, Figures* out) {
+  bench::DracoFrameCodec unused;  // the baseline codes no connectivity
+  const bench::BenchContext ctx{anim, tolerance, diagonal, unused, 0, 1};
+  bench::MethodResult r;
+  std::string err;
+  if (!bench::bench_quantized_delta(ctx, &r, &err) || r.decode_vertices_per_second <= 0) {
+    std::fprintf(stderr, "runtime_bench: quantized delta skipped: %s\n", err.c_str());
+    return;
+  }
+  out->delta_s = double(anim.vertex_count) * double(anim.frames.size()) / r.decode_vertices_per_second;
+}
+
 bool measure(const std::string& path, Figures* out) {
   std::vector<uint8_t> bytes;
   std::string err;
@@ -120,6 +135,7 @@ bool measure(const std::string& path, Figures* out) {
   auto dec = Decoder::open_memory(bytes.data(), bytes.size(), &err);
   f.chunk_frames = dec ? dec->chunk_frames() : 0;
   measure_draco(anim, tolerance, diagonal, &f);
+  measure_quantized_delta(anim, tolerance, diagonal, &f);
   return true;
 }
 
@@ -135,6 +151,9 @@ void print(const std::string& path, const Figures& f) {
   if (f.draco_s > 0)
     std::printf("  Draco, same frames       %10.3f ms  = %.2f M vertex-frames/s (%d bits); dcurve %.2fx Draco (goal >= 5)\n",
                 1e3 * f.draco_s, vf / f.draco_s / 1e6, f.draco_bits, f.draco_s / f.playback_s);
+  if (f.delta_s > 0)
+    std::printf("  quantized delta + zstd   %10.3f ms  = %.2f M vertex-frames/s; dcurve %.2fx its rate (goal >= 0.5)\n",
+                1e3 * f.delta_s, vf / f.delta_s / 1e6, f.delta_s / f.playback_s);
   std::printf("  memcpy, same frames      %10.3f ms  = %.2f M vertex-frames/s; dcurve %.1fx slower\n", 1e3 * f.memcpy_s,
               vf / f.memcpy_s / 1e6, f.playback_s / f.memcpy_s);
   std::printf("  memory after playback    %10llu bytes = %.3f of raw float32 (%llu bytes; goal <= 0.15), %.2f of the file\n",
