@@ -25,6 +25,7 @@ struct RenderState {
   std::vector<float> attributes[kAttributeSemanticCount];  // empty when the file has none
   uint32_t components[kAttributeSemanticCount] = {};
   std::vector<uint32_t> normal_group;  // per render vertex
+  std::vector<uint32_t> corner_group;  // per corner of the faces: its render vertex's normal group
   uint32_t normal_groups = 0;
   std::vector<uint32_t> group_faces;   // render triangles by group (3 ids each); empty without groups
   std::vector<uint32_t> group_first;   // group g's triangles: [group_first[g], group_first[g + 1])

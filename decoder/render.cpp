@@ -37,6 +37,8 @@ void build_normal_groups(const RenderMesh& render, RenderState* state) {
     state->normal_group[order[i]] = group;
   }
   state->normal_groups = R ? group + 1 : 0;
+  state->corner_group.resize(render.corners.size());
+  for (size_t k = 0; k < render.corners.size(); ++k) state->corner_group[k] = state->normal_group[render.corners[k]];
 }
 
 // Render triangles in group order (stable: each group's keep the faces' order).
@@ -71,7 +73,7 @@ void build_render_state(Model* model, RenderState* state) {
 }
 
 size_t RenderState::memory_bytes() const {
-  size_t bytes = (normal_group.capacity() + group_faces.capacity() + group_first.capacity()) * 4;
+  size_t bytes = (normal_group.capacity() + corner_group.capacity() + group_faces.capacity() + group_first.capacity()) * 4;
   for (const std::vector<float>& a : attributes) bytes += a.capacity() * 4;
   return bytes;
 }
@@ -115,10 +117,9 @@ bool Decoder::compute_render_normals(const float* xyz, float* normals) const {
   const Model& m = impl_->shared.model;
   if (m.render.empty()) return compute_normals(xyz, normals);
   const RenderState& state = impl_->shared.render;
-  std::vector<uint32_t> corner_group(m.faces.size());
-  for (size_t k = 0; k < corner_group.size(); ++k) corner_group[k] = state.normal_group[m.render.corners[k]];
   std::vector<float> group_normals(size_t(state.normal_groups) * 3);
-  area_normals(xyz, m.faces.data(), m.faces.size(), corner_group.data(), state.normal_groups, group_normals.data());
+  area_normals(xyz, m.faces.data(), m.faces.size(), state.corner_group.data(), state.normal_groups,
+               group_normals.data());
   for (size_t i = 0; i < m.render.source.size(); ++i)
     std::copy_n(group_normals.data() + 3 * size_t(state.normal_group[i]), 3, normals + 3 * i);
   return true;
