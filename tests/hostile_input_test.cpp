@@ -144,6 +144,17 @@ TEST(HostileGltfResources, AMaterialsImagesAreReadUnderThePolicy) {
   EXPECT_EQ(anim.render.groups[0].name, "cloth");
 }
 
+// Found by the reader fuzzer: a mesh that is not an object, looked at before tinygltf parses
+// the file (which images a material uses), read a destroyed temporary (ASan catches it).
+TEST(HostileGltfResources, MeshesThatAreNotObjectsAreRefusedCleanly) {
+  TempDir dir;
+  write_triangle_buffer(dir / "buf.bin");
+  json j = triangle_gltf();
+  j["meshes"].push_back(5);
+  j["meshes"].push_back({{"primitives", 7}});
+  EXPECT_NE(read_gltf(dir / "t.gltf", j), "");
+}
+
 TEST(HostileGltfResources, BufferSizeMustMatchItsFileAndDataUrisAreBounded) {
   TempDir dir;
   write_triangle_buffer(dir / "buf.bin");

@@ -142,8 +142,9 @@ Json material_extensions(const Json& doc, const char* key) {
 std::set<int64_t> used_images(const Json& doc) {
   std::set<int64_t> textures, images;
   const Json& materials = array_of(doc, "materials");
-  for (const Json& mesh : array_of(doc, "meshes"))
-    for (const Json& p : array_of(mesh.is_object() ? mesh : Json::object(), "primitives")) {
+  for (const Json& mesh : array_of(doc, "meshes")) {
+    if (!mesh.is_object()) continue;
+    for (const Json& p : array_of(mesh, "primitives")) {
       if (!p.is_object() || !p.contains("material") || !p["material"].is_number_integer()) continue;
       const int64_t m = p["material"].get<int64_t>();
       if (!valid_index(m, materials)) continue;
@@ -152,6 +153,7 @@ std::set<int64_t> used_images(const Json& doc) {
       renumber_texture_refs(&copy, &r);
       textures.insert(r.order.begin(), r.order.end());
     }
+  }
   const Json& all = array_of(doc, "textures");
   for (int64_t t : textures) {
     if (!valid_index(t, all) || !all[size_t(t)].is_object()) continue;
