@@ -20,7 +20,6 @@
 #include "decoder/dcurve.hpp"
 #include "encoder/io/frames.h"
 #include "encoder/metrics.h"
-#include "corpus/sim/scene.h"
 
 namespace dcurve::test {
 
@@ -45,15 +44,9 @@ inline Animation read_corpus_frames(const std::string& sequence, int count, int 
 }
 
 // Simulates the first `frames` (>= 1) frames of a built-in scene, or fails the test.
-inline Animation simulate_builtin(const std::string& name, uint32_t frames) {
-  Scene scene;
-  std::string err;
-  if (!builtin_scene(name, &scene, &err)) throw std::runtime_error(err);
-  scene.frames = frames;
-  Animation anim;
-  if (!simulate_scene(scene, &anim, {}, &err)) throw std::runtime_error(err);
-  return anim;
-}
+// Defined in test_util.cpp, compiled once for every test program: the scene's header brings
+// Eigen and nlohmann/json, which most tests do not use.
+Animation simulate_builtin(const std::string& name, uint32_t frames);
 
 // The faces of a W x H grid of vertices numbered row by row, two triangles per cell.
 inline std::vector<uint32_t> grid_faces(uint32_t W, uint32_t H) {
