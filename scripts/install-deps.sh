@@ -7,7 +7,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config
   libeigen3-dev libdraco-dev draco libopenmesh-dev libtet1.5-dev libzstd-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
   libmeshoptimizer-dev libhtscodecs-dev clang libclang-rt-14-dev libtinygltf-dev
