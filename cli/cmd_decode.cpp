@@ -1,5 +1,3 @@
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +10,7 @@
 #include "codec/common/inbetween.h"
 #include "codec/common/render_mesh.h"
 #include "encoder/io/files.h"
+#include "encoder/io/obj_corners.h"
 #include "decoder/dcurve.hpp"
 
 namespace dcurve::cli {
@@ -96,9 +95,7 @@ void describe_obj_output(const Decoder& dec, OutputSpec* spec) {
     obj.group_faces.push_back(dec.group(g).face_count);
     obj.group_names.push_back(dec.group_name(g));
   }
-  const nlohmann::json m = nlohmann::json::parse(dec.materials_json(), nullptr, false);
-  if (m.is_object() && m.contains("objMaterialLibrary") && m["objMaterialLibrary"].is_string())
-    obj.material_library = m["objMaterialLibrary"].get<std::string>();
+  obj.material_library = obj_material_library(dec.materials_json());
 }
 
 OutputSpec output_spec(const DecodeOpts& o, const Decoder& dec, uint32_t frames) {

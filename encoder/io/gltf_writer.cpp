@@ -188,6 +188,27 @@ TargetText GltfWriter::target_text(int view_index, uint64_t first_accessor, bool
   return text;
 }
 
+namespace {
+
+// The weights animation: key i at the input's first key time + i / fps turns target i - 1
+// fully on (key 0: none). `first` and `last`: the first and last key times.
+void add_weights_animation(const GltfLayout& at, uint32_t frame_count, float first, float last, bool placeholders,
+                           Json* doc, Json* mesh, Json* views, Json* accessors) {
+  views->push_back(view(at.times, at.weights - at.times, 0));
+  Json times = accessor(int(views->size() - 1), 0, frame_count, "SCALAR", kFloat);
+  times["min"] = {placeholders ? kLongestNumber : double(first)};
+  times["max"] = {placeholders ? kLongestNumber : double(last)};
+  accessors->push_back(times);
+  views->push_back(view(at.weights, at.end - at.weights, 0));
+  accessors->push_back(accessor(int(views->size() - 1), 0, uint64_t(frame_count) * (frame_count - 1), "SCALAR", kFloat));
+  Json sampler = {{"input", accessors->size() - 2}, {"output", accessors->size() - 1}, {"interpolation", "LINEAR"}};
+  Json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
+  (*doc)["animations"] = Json::array({{{"name", "frames"}, {"samplers", {sampler}}, {"channels", {channel}}}});
+  (*mesh)["weights"] = std::vector<double>(frame_count - 1, 0.0);
+}
+
+}  // namespace
+
 // Accessors and views in the buffer's order: indices, static attributes, frame 0, the targets,
 // times, weights (the targets' accessors last, spliced in as text).
 std::string GltfWriter::json(bool placeholders) const {
@@ -217,7 +238,8 @@ std::string GltfWriter::json(bool placeholders) const {
   mesh["primitives"] = group_primitives(scene_, primitive, faces_.empty() ? -1 : 0, materials, &accessors);
   TargetText targets;
   if (frame_count_ > 1) {
-    add_weights_animation(at, placeholders, &doc, &mesh, &views, &accessors);
+    add_weights_animation(at, frame_count_, key_time(0), key_time(frame_count_ - 1), placeholders, &doc, &mesh, &views,
+                          &accessors);
     // The targets' accessors last: their indices follow from the count of those before.
     views.push_back(view(at.targets, at.times - at.targets, kArrayBuffer));
     targets = target_text(int(views.size() - 1), accessors.size(), placeholders);
@@ -239,23 +261,6 @@ std::string GltfWriter::json(bool placeholders) const {
       text.replace(at, in_primitive.size(), list);
   }
   return text;
-}
-
-// The weights animation: key i at the input's first key time + i / fps turns target i - 1
-// fully on (key 0: none).
-void GltfWriter::add_weights_animation(const GltfLayout& at, bool placeholders, Json* doc, Json* mesh, Json* views,
-                                       Json* accessors) const {
-  views->push_back(view(at.times, at.weights - at.times, 0));
-  Json times = accessor(int(views->size() - 1), 0, frame_count_, "SCALAR", kFloat);
-  times["min"] = {placeholders ? kLongestNumber : double(key_time(0))};
-  times["max"] = {placeholders ? kLongestNumber : double(key_time(frame_count_ - 1))};
-  accessors->push_back(times);
-  views->push_back(view(at.weights, at.end - at.weights, 0));
-  accessors->push_back(accessor(int(views->size() - 1), 0, uint64_t(frame_count_) * (frame_count_ - 1), "SCALAR", kFloat));
-  Json sampler = {{"input", accessors->size() - 2}, {"output", accessors->size() - 1}, {"interpolation", "LINEAR"}};
-  Json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "weights"}}}};
-  (*doc)["animations"] = Json::array({{{"name", "frames"}, {"samplers", {sampler}}, {"channels", {channel}}}});
-  (*mesh)["weights"] = std::vector<double>(frame_count_ - 1, 0.0);
 }
 
 float GltfWriter::key_time(uint32_t frame) const {

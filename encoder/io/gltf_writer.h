@@ -13,15 +13,12 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "codec/common/render_mesh.h"
 #include "encoder/io/output_file.h"
 
 namespace dcurve {
 
 struct TargetText;
-struct GltfLayout;
 
 // What the output carries besides the frames: static attributes written once (TEXCOORD_0,
 // COLOR_0, ... per vertex of the output), and the input's placement: node transform and
@@ -71,9 +68,6 @@ class GltfWriter {
   bool write_animation_data(std::string* error);
   std::string json(bool placeholders) const;
   TargetText target_text(int view_index, uint64_t first_accessor, bool placeholders) const;
-  void add_weights_animation(const GltfLayout& at, bool placeholders, nlohmann::ordered_json* doc,
-                             nlohmann::ordered_json* mesh, nlohmann::ordered_json* views,
-                             nlohmann::ordered_json* accessors) const;
   uint64_t buffer_bytes() const;
   uint64_t static_bytes() const;
   float key_time(uint32_t frame) const;  // the input's first key time, then one frame apart

@@ -190,4 +190,10 @@ bool obj_render(const ObjCorners& c, Animation* anim, std::string* error) {
   return true;
 }
 
+std::string obj_material_library(const std::string& materials_json) {
+  const nlohmann::json m = nlohmann::json::parse(materials_json, nullptr, false);
+  if (!m.is_object() || !m.contains("objMaterialLibrary") || !m["objMaterialLibrary"].is_string()) return "";
+  return m["objMaterialLibrary"].get<std::string>();
+}
+
 }  // namespace dcurve

@@ -33,4 +33,7 @@ bool read_obj_corners(const std::string& path, ObjCorners* out, std::string* err
 // Nothing when the file has neither vt, vn nor usemtl.
 bool obj_render(const ObjCorners& c, Animation* anim, std::string* error);
 
+// The material library obj_render recorded in a file's materials JSON (MATL), or "".
+std::string obj_material_library(const std::string& materials_json);
+
 }  // namespace dcurve
