@@ -269,12 +269,15 @@ float GltfWriter::key_time(uint32_t frame) const {
 
 uint64_t GltfWriter::file_bytes(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, bool binary,
                                 const GltfScene& scene) {
-  GltfWriter w(vertex_count, std::vector<uint32_t>(face_ids), frame_count, 30, binary, scene);
-  const uint64_t buffer = w.buffer_bytes();
+  return GltfWriter(vertex_count, std::vector<uint32_t>(face_ids), frame_count, 30, binary, scene).expected_bytes();
+}
+
+uint64_t GltfWriter::expected_bytes() const {
+  const uint64_t buffer = buffer_bytes();
   // Past the limit on the buffer alone: no need to build a JSON of millions of targets.
-  if (buffer > kMaxGltfBytes) return binary ? buffer : base64_bytes(buffer);
-  const uint64_t json = w.json(true).size();
-  if (binary) return 12 + 8 + padded4(json) + 8 + buffer;
+  if (buffer > kMaxGltfBytes) return binary_ ? buffer : base64_bytes(buffer);
+  const uint64_t json = this->json(true).size();
+  if (binary_) return 12 + 8 + padded4(json) + 8 + buffer;
   // {"buffers":[{"byteLength":N,"uri":"data:...,BASE64"}], then the JSON after its "{"
   return std::strlen("{\"buffers\":[{\"byteLength\":,\"uri\":\"") + std::to_string(buffer).size() +
          std::strlen(kDataUri) + base64_bytes(buffer) + std::strlen("\"}],") + json - 1;
@@ -282,19 +285,23 @@ uint64_t GltfWriter::file_bytes(uint32_t vertex_count, size_t face_ids, uint32_t
 
 bool GltfWriter::check_size(uint32_t vertex_count, size_t face_ids, uint32_t frame_count, bool binary,
                             std::string* error, const GltfScene& scene) {
-  const uint64_t bytes = file_bytes(vertex_count, face_ids, frame_count, binary, scene);
+  return GltfWriter(vertex_count, std::vector<uint32_t>(face_ids), frame_count, 30, binary, scene).fits(error);
+}
+
+bool GltfWriter::fits(std::string* error) const {
+  const uint64_t bytes = expected_bytes();
   if (bytes > kMaxGltfBytes)
-    return fail(error, std::to_string(frame_count) + " frames of " + std::to_string(vertex_count) + " vertices need " +
+    return fail(error, std::to_string(frame_count_) + " frames of " + std::to_string(vertex_count_) + " vertices need " +
                            std::to_string(bytes >> 20) + " MiB as glTF morph targets" +
-                           (binary ? "" : " in base64") +
+                           (binary_ ? "" : " in base64") +
                            ", more than the 1024 MiB dcurve writes: ask for fewer --frames, or write .pc2/.mdd or a folder");
   return true;
 }
 
 bool GltfWriter::open(const std::string& path, bool replace, std::string* error) {
   if (frame_count_ == 0) return fail(error, path + ": a glTF output needs at least one frame");
-  if (!check_size(vertex_count_, faces_.size(), frame_count_, binary_, error, scene_))
-    return fail(error, path + ": " + *error);
+  // Checked on this writer: its attributes and images are not copied again.
+  if (!fits(error)) return fail(error, path + ": " + *error);
   if (!out_.open(path, replace, error)) return false;
   const uint64_t buffer = buffer_bytes();
   std::string head;

@@ -69,6 +69,8 @@ class GltfWriter {
   std::string json(bool placeholders) const;
   TargetText target_text(int view_index, uint64_t first_accessor, bool placeholders) const;
   uint64_t buffer_bytes() const;
+  uint64_t expected_bytes() const;        // file_bytes of this writer
+  bool fits(std::string* error) const;    // check_size of this writer
   uint64_t static_bytes() const;
   float key_time(uint32_t frame) const;  // the input's first key time, then one frame apart
 

@@ -7,13 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include "codec/common/mixed_hash.h"
+
 namespace dcurve {
 namespace {
-
-uint64_t mix(uint64_t h, uint32_t bits) {
-  h ^= bits + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
-  return h * 0xff51afd7ed558ccdull;
-}
 
 bool same_in_every_frame(const Animation& anim, uint32_t a, uint32_t b) {
   for (const std::vector<float>& f : anim.frames)
@@ -31,7 +28,7 @@ std::vector<uint32_t> find_representatives(const Animation& anim) {
       for (int a = 0; a < 3; ++a) {
         uint32_t bits;
         std::memcpy(&bits, &f[3 * size_t(r) + a], 4);
-        h = mix(h, bits);
+        h = MixedHash{}(h + bits);
       }
     keyed[r] = {h, r};
   }
