@@ -43,22 +43,26 @@ class EdgeTable {
 
 struct Builder {
   FastTraversal t;
-  std::vector<uint8_t> seen;
+  std::vector<uint32_t> position;  // per vertex, UINT32_MAX until seen
+  bool seen(uint32_t v) const { return position[v] != UINT32_MAX; }
+  // Vertex v at the next position, predicted from the vertices a, b, c (seen ones, or 0 where
+  // the type reads none).
   void add(uint32_t v, FastSpatial type, uint32_t a, uint32_t b, uint32_t c) {
-    seen[v] = 1;
+    position[v] = uint32_t(t.order.size());
     t.order.push_back(v);
     t.type.push_back(uint8_t(type));
-    t.refs.insert(t.refs.end(), {a, b, c});
+    const int used = type == FastSpatial::Parallelogram ? 3 : int(type);
+    t.refs.insert(t.refs.end(), {used > 0 ? position[a] : 0, used > 1 ? position[b] : 0, used > 2 ? position[c] : 0});
   }
   // Corner x of a triangle whose other corners are y, z: predicted from what is seen of them.
   void reach(uint32_t x, uint32_t y, uint32_t z, const EdgeTable& edges) {
-    if (seen[x]) return;
-    if (seen[y] && seen[z]) {
+    if (seen(x)) return;
+    if (seen(y) && seen(z)) {
       const uint32_t w = edges.find(y, z);
       if (w != UINT32_MAX) add(x, FastSpatial::Parallelogram, y, z, w);
       else add(x, FastSpatial::Mean, y, z, 0);
-    } else if (seen[y] || seen[z]) {
-      add(x, FastSpatial::Copy, seen[y] ? y : z, 0, 0);
+    } else if (seen(y) || seen(z)) {
+      add(x, FastSpatial::Copy, seen(y) ? y : z, 0, 0);
     } else {
       add(x, FastSpatial::None, 0, 0, 0);
     }
@@ -68,7 +72,7 @@ struct Builder {
 
 FastTraversal fast_traversal(const std::vector<uint32_t>& faces, uint32_t V) {
   Builder b;
-  b.seen.assign(V, 0);
+  b.position.assign(V, UINT32_MAX);
   b.t.order.reserve(V);
   b.t.type.reserve(V);
   b.t.refs.reserve(size_t(V) * 3);
@@ -83,7 +87,7 @@ FastTraversal fast_traversal(const std::vector<uint32_t>& faces, uint32_t V) {
     edges.insert(z, x, y);
   }
   for (uint32_t v = 0; v < V; ++v)
-    if (!b.seen[v]) {
+    if (!b.seen(v)) {
       const bool first = b.t.order.empty();
       b.add(v, first ? FastSpatial::None : FastSpatial::Copy, first ? 0 : b.t.order.back(), 0, 0);
     }

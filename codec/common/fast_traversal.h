@@ -14,7 +14,10 @@ enum class FastSpatial : uint8_t { None = 0, Copy = 1, Mean = 2, Parallelogram =
 struct FastTraversal {
   std::vector<uint32_t> order;   // position -> vertex id, a permutation of [0, V)
   std::vector<uint8_t> type;     // per position, a FastSpatial
-  std::vector<uint32_t> refs;    // per position 3 vertex ids (a, b, c): Copy a; Mean (a, b); a + b - c
+  // Per position 3 earlier positions (a, b, c): Copy a; Mean (a, b); a + b - c. Positions, not
+  // vertex ids, so a frame's corrections are read in traversal order: the references of a
+  // position are mostly a few steps back, in cache.
+  std::vector<uint32_t> refs;
   size_t bytes() const { return order.capacity() * 4 + type.capacity() + refs.capacity() * 4; }
 };
 
@@ -22,8 +25,8 @@ struct FastTraversal {
 // vertex a copy of the one before.
 FastTraversal fast_traversal(const std::vector<uint32_t>& faces, uint32_t V);
 
-// The spatial prediction of the vertex at position i from the values e (vertex-major, 3 per
-// vertex) of the vertices before it, axis a. smooth: Mean where the type is Parallelogram
+// The spatial prediction of the vertex at position i from the values e (position-major, 3
+// per position) of the positions before it, axis a. smooth: Mean where the type is Parallelogram
 // (a noisy field, e.g. rounding left by a model, is predicted better by an average).
 inline int64_t fast_spatial(const FastTraversal& t, size_t i, const int64_t* e, int a, bool smooth = false) {
   const uint32_t* r = &t.refs[i * 3];

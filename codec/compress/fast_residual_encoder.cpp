@@ -21,11 +21,15 @@ void fast_frame_residuals(uint8_t kind, const FastTraversal& t, const int32_t* q
     for (size_t i = 0; i < n; ++i) r[i] = int64_t(q[i]) - scratch[i];
     return;
   }
-  std::vector<int64_t> e(n);
-  for (size_t i = 0; i < n; ++i) e[i] = int64_t(q[i]) - scratch[i];
+  std::vector<int64_t> e(n);  // corrections in traversal order
+  for (size_t i = 0; i < n / 3; ++i)
+    for (int a = 0; a < 3; ++a) {
+      const size_t x = size_t(t.order[i]) * 3 + size_t(a);
+      e[i * 3 + size_t(a)] = int64_t(q[x]) - scratch[x];
+    }
   for (size_t i = 0; i < n / 3; ++i)
     for (int a = 0; a < 3; ++a)
-      r[i * 3 + size_t(a)] = e[size_t(t.order[i]) * 3 + size_t(a)] - fast_spatial(t, i, e.data(), a, is_smooth(kind));
+      r[i * 3 + size_t(a)] = e[i * 3 + size_t(a)] - fast_spatial(t, i, e.data(), a, is_smooth(kind));
 }
 
 namespace {

@@ -147,26 +147,58 @@ bool FastChunkDecoder::add_residuals(int32_t* out) {
   return c.slot == V_;
 }
 
+namespace {
+// What the traversal predicts for position i's three axes from the corrections e of the
+// positions before it (position-major): fast_spatial for the three at once, the type read once.
+inline void predict_position(FastSpatial type, const uint32_t* r, const int64_t* e, int64_t* p) {
+  const int64_t* x = e + size_t(r[0]) * 3;
+  const int64_t* y = e + size_t(r[1]) * 3;
+  const int64_t* z = e + size_t(r[2]) * 3;
+  switch (type) {
+    case FastSpatial::Copy:
+      for (int a = 0; a < 3; ++a) p[a] = x[a];
+      break;
+    case FastSpatial::Mean:
+      for (int a = 0; a < 3; ++a) p[a] = (x[a] + y[a] + 1) >> 1;
+      break;
+    case FastSpatial::Parallelogram:
+      for (int a = 0; a < 3; ++a) p[a] = x[a] + y[a] - z[a];
+      break;
+    default:
+      for (int a = 0; a < 3; ++a) p[a] = 0;
+  }
+}
+}  // namespace
+
 // Spatial frames: in traversal order, each position's residual (zero unless the ops name it)
 // plus what the traversal predicts from the positions before it is the correction of the
 // base prediction. One pass, no buffer to clear.
 bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth) {
   const FastTraversal& t = *traversal_;
   spatial_.resize(size_t(V_) * 3);
-  int64_t* e = spatial_.data();
+  int64_t* e = spatial_.data();  // position-major
   OpCursor c{ops_, op_pos_, op_pos_ + op_counts_[next_], V_};
   if (!c.next()) return false;
   for (uint32_t i = 0; i < V_; ++i) {
-    const size_t v = size_t(t.order[i]) * 3;
-    for (int a = 0; a < 3; ++a) {
-      int64_t r = 0;
-      if (i == c.slot && (c.mask >> a & 1) && !read_value(values_, &value_pos_, &r)) return false;
-      e[v + size_t(a)] = r + fast_spatial(t, i, e, a, smooth);
-      const int64_t q = int64_t(out[v + size_t(a)]) + e[v + size_t(a)];
-      if (!in_int32(q)) return false;  // also keeps every e within 2^33, so the sums stay small
-      out[v + size_t(a)] = int32_t(q);
+    FastSpatial type = FastSpatial(t.type[i]);
+    if (smooth && type == FastSpatial::Parallelogram) type = FastSpatial::Mean;
+    int64_t* x = e + size_t(i) * 3;
+    predict_position(type, &t.refs[size_t(i) * 3], e, x);
+    if (i == c.slot) {
+      for (int a = 0; a < 3; ++a) {
+        int64_t r = 0;
+        if ((c.mask >> a & 1) && !read_value(values_, &value_pos_, &r)) return false;
+        x[a] += r;
+      }
+      if (!c.next()) return false;
     }
-    if (i == c.slot && !c.next()) return false;
+    int32_t* o = out + size_t(t.order[i]) * 3;
+    const int64_t q0 = int64_t(o[0]) + x[0], q1 = int64_t(o[1]) + x[1], q2 = int64_t(o[2]) + x[2];
+    // Rejecting q outside int32 also keeps every e within 2^33, so the sums stay small.
+    if (!in_int32(q0) || !in_int32(q1) || !in_int32(q2)) return false;
+    o[0] = int32_t(q0);
+    o[1] = int32_t(q1);
+    o[2] = int32_t(q2);
   }
   op_pos_ = c.pos;
   return true;

@@ -37,7 +37,8 @@ int vertex_bits(const int64_t* r) {
 
 // Frame values snapped vertex by vertex against the kind byte's prediction (base: the dense
 // base prediction; with the spatial flag, vertices in traversal order, each also predicted
-// from the corrections e of the vertices before it) into q; returns estimated bits.
+// from the corrections e of the positions before it, kept in traversal order) into q;
+// returns estimated bits.
 int64_t snap_frame(const FastInputs& in, const float* x, const std::vector<AxisRun>& runs, uint8_t kind,
                    const int32_t* base, int32_t* q, int64_t* e) {
   const bool spatial = has_spatial(kind);
@@ -51,7 +52,7 @@ int64_t snap_frame(const FastInputs& in, const float* x, const std::vector<AxisR
     }
     snap_vertex(*in.layer, x + i, &runs[i], in.radius, 0.0, p, q + i);
     const int64_t r[3] = {q[i] - p[0], q[i + 1] - p[1], q[i + 2] - p[2]};
-    for (int a = 0; a < 3; ++a) e[i + size_t(a)] = int64_t(q[i + size_t(a)]) - base[i + size_t(a)];
+    for (int a = 0; a < 3; ++a) e[size_t(pos) * 3 + size_t(a)] = int64_t(q[i + size_t(a)]) - base[i + size_t(a)];
     bits += vertex_bits(r);
   }
   return bits;

@@ -175,7 +175,7 @@ void snap_plane_fast(const FastTraversal& t, const double* x, bool smooth, int32
       const size_t i = v + size_t(a);
       const double lo = std::max(std::ceil(x[i] - kBasisSnap), -limit), hi = std::min(std::floor(x[i] + kBasisSnap), limit);
       plane[i] = int32_t(std::clamp(double(fast_spatial(t, pos, e.data(), a, smooth)), lo, std::max(lo, hi)));
-      e[i] = plane[i];
+      e[pos * 3 + size_t(a)] = plane[i];
     }
   }
 }
