@@ -47,8 +47,12 @@ bool prepare(SharedState* shared, uint64_t file_bytes, std::string* error) {
   }
   build_render_state(&shared->model, &shared->render);
   const bool has_traversal = m.residual.step > 0 && !shared->fast();
-  return shared->predictor.build(m, budget, error, has_traversal ? &shared->traversal : nullptr,
-                                 shared->fast() ? &shared->fast_traversal : nullptr);
+  if (!shared->predictor.build(m, budget, error, has_traversal ? &shared->traversal : nullptr,
+                               shared->fast() ? &shared->fast_traversal : nullptr))
+    return false;
+  // The predictor holds the decoded basis: its coded form is read no more.
+  std::vector<uint8_t>().swap(shared->model.low_rank.basis_payload);
+  return true;
 }
 
 }  // namespace

@@ -37,8 +37,9 @@ struct Vector {
 
 // A hand-made low-rank model (LRNK, with coefficient shifts, and with frame poses when
 // `posed`: format 2.5) on `m`, and its residual re-coded with the Model predictor on every
-// frame: the grid values, hence the expected positions, do not change.
-Model with_low_rank(Model m, bool posed = false) {
+// frame: the grid values, hence the expected positions, do not change. fast: format 4, the
+// basis and the residual as fast payloads, the differences packed.
+Model with_low_rank(Model m, bool posed = false, bool fast = false) {
   const uint32_t V = m.meta.vertex_count, F = m.meta.frame_count, K = 2;
   LowRankModel& lr = m.low_rank;
   lr.components = K;
@@ -56,7 +57,8 @@ Model with_low_rank(Model m, bool posed = false) {
   pseudo.low_rank = LowRankModel{};
   PredictorPlan spatial = uniform_plan(
       {0, 1, 2}, std::vector<PredictorChoice>(3 * (K + 1), PredictorChoice{PredictorKind::None, 0, 0, SpatialMode::Parallelogram}));
-  lr.basis_payload = encode_residuals(pseudo, mean_and_basis, &spatial);
+  lr.basis_payload = fast ? encode_fast_residuals(pseudo, mean_and_basis, std::vector<uint8_t>(K + 1, 0x10), K + 1, nullptr)
+                         : encode_residuals(pseudo, mean_and_basis, &spatial);
   if (posed) {
     // Not rotations (nothing requires it): a growing turn about z, a squeeze along z, a drift.
     const int32_t one = int32_t(1) << kLowRankPoseShift;
@@ -72,6 +74,13 @@ Model with_low_rank(Model m, bool posed = false) {
   std::string err;
   if (!model_grid_prediction(m, UINT64_MAX, &prediction, &err)) ADD_FAILURE() << err;
   ResidualOptions ro;
+  if (fast) {
+    // Model alone, then Model plus spatial, then ModelDelta with spatial, over chunks of 4.
+    std::vector<uint8_t> kinds;
+    for (uint32_t f = 0; f < F; ++f) kinds.push_back(f % 4 == 0 ? 3 : f % 2 ? 0x13 : 0x14);
+    m.residual.payload = encode_fast_residuals(m, testing::grid(V, F), kinds, 4, &prediction);
+    return m;
+  }
   ro.model_prediction = &prediction;
   std::vector<uint32_t> order;
   for (uint32_t f = 0; f < F; ++f) order.push_back(f);
@@ -171,6 +180,8 @@ std::vector<Vector> recipes() {
       encode_fast_residuals(fast_model, testing::grid(6, 10), {3, 0x14, 4, 1, 0x13, 4, 2, 0x14, 3, 0}, 4,
                             &prediction);
   v.push_back({"fast_model_chunked", fast_model, {}});
+  // Format 4 with LRNK: a fast basis payload, packed coefficient and pose differences.
+  v.push_back({"fast_low_rank_posed", with_low_rank(low_rank_sheet, true, true), {}});
   // Format 3.3: render vertices (copies of vertices 3 and 1 in the last two triangles) with
   // texture coordinates and colours, and a placement (dcrv.md sections 19, 20).
   Model render = small_model(4);

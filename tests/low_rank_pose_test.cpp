@@ -54,10 +54,7 @@ std::vector<uint8_t> encode(const Animation& anim, bool poses, EncodeReport* rep
   o.tolerance = 1e-3;
   o.grid_refinement = 2;  // the grid search is grid_test's
   o.low_rank_poses = poses;
-  std::vector<uint8_t> bytes;
-  std::string err;
-  EXPECT_TRUE(encode_animation(anim, o, &bytes, rep, &err)) << err;
-  return bytes;
+  return test::encoded(anim, o, rep);
 }
 
 Model read(const std::vector<uint8_t>& bytes) {

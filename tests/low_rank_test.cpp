@@ -432,7 +432,7 @@ TEST(LowRank, CoefficientsDecodeTheSameInBothLayouts) {
   huge.meta.frame_count = 1000000;
   const uint8_t tiny[] = {0x81, 4, 0, 1, 0, 0};
   ByteReader r(tiny, sizeof tiny);
-  EXPECT_FALSE(parse_low_rank(r, &huge));
+  EXPECT_FALSE(parse_low_rank(r, &huge, false));
 }
 
 // Per-component coefficient shifts (2.3): an encode of a model with weak components stores

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "decoder/dcurve.hpp"
+#include "encoder/encoder.h"
 #include "encoder/io/frames.h"
 #include "encoder/metrics.h"
 
@@ -70,6 +71,15 @@ inline double decoded_max_error(const std::vector<uint8_t>& bytes, const Animati
   for (uint32_t f = 0; f < decoded.size(); ++f)
     if (!dec->evaluate_frame(f, decoded[f].data())) return std::numeric_limits<double>::infinity();
   return measure_error(anim, decoded).max_error;
+}
+
+// The file encode_animation writes for anim with options o (a test failure, and no bytes, when
+// it fails).
+inline std::vector<uint8_t> encoded(const Animation& anim, const EncodeOptions& o, EncodeReport* report = nullptr) {
+  std::vector<uint8_t> bytes;
+  std::string err;
+  EXPECT_TRUE(encode_animation(anim, o, &bytes, report, &err)) << err;
+  return bytes;
 }
 
 // Whether `file` is either refused (at open, or by the evaluation of a frame whose chunk

@@ -149,7 +149,7 @@ void print(const std::string& path, const Figures& f) {
   std::printf("  open + every frame       %10.3f ms  = %.2f M vertex-frames/s\n", 1e3 * f.playback_s,
               vf / f.playback_s / 1e6);
   if (f.draco_s > 0)
-    std::printf("  Draco, same frames       %10.3f ms  = %.2f M vertex-frames/s (%d bits); dcurve %.2fx Draco (goal >= 5)\n",
+    std::printf("  Draco, same frames       %10.3f ms  = %.2f M vertex-frames/s (%d bits); dcurve %.2fx Draco (goal >= 10)\n",
                 1e3 * f.draco_s, vf / f.draco_s / 1e6, f.draco_bits, f.draco_s / f.playback_s);
   if (f.delta_s > 0)
     std::printf("  quantized delta + zstd   %10.3f ms  = %.2f M vertex-frames/s; dcurve %.2fx its rate (goal >= 0.5)\n",

@@ -24,6 +24,9 @@ constexpr uint16_t kFastFormatVersionMinor = 0;
 // so other files keep their version; older readers skip both and decode the same positions.
 constexpr uint16_t kRenderFormatVersionMinor = 3;
 constexpr uint16_t kFastRenderFormatVersionMinor = 1;
+// Minor 2 of format 4 (4.2; it may hold REND and PLAC too): LRNK's differences packed
+// through zstd, a bit 4.0 and 4.1 readers refuse. Written exactly for format 4 files with LRNK.
+constexpr uint16_t kFastPackedFormatVersionMinor = 2;
 // Required feature (file_flags bit 0, since 3.1): residual payloads may be of version 4 (zero
 // block flags), which a 3.0 reader cannot decode. The writer always sets it.
 constexpr uint32_t kFileFlagZeroBlocks = 1u;

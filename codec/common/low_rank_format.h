@@ -24,9 +24,15 @@ constexpr uint8_t kRangeCoded = 0x80;
 // Bit 7 of the mean-shift byte: K per-component coefficient shifts follow (format 2.3).
 constexpr uint8_t kCoeffShifts = 0x80;
 // Bit 6 of the mean-shift byte: frame poses follow the basis payload (format 2.5). The mean
-// shift itself needs bits 0-4 (at most 30); bit 5 is reserved and must be 0.
+// shift itself needs bits 0-4 (at most 30).
 constexpr uint8_t kPosed = 0x40;
+// Bit 5 of the mean-shift byte (format 4 only): the coefficient and pose differences are
+// svarints in one zstd frame each, not range-coded: static tables, so a decoder opens a long
+// clip without an adaptive decode of every coefficient.
+constexpr uint8_t kPackedDifferences = 0x20;
 constexpr uint8_t kMeanShiftMask = 0x1f;
+// A packed stream's svarints: at least one byte each, at most 6 (|difference| <= 2^40).
+constexpr uint64_t kMaxSvarintBytes = 6;
 
 // A range-coded stream may hold many values per byte; a decoder allocates F * K values only
 // when F * K <= 4096 + 64 * stream bytes (the writer keeps svarints beyond that).

@@ -177,7 +177,9 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   const bool fast = !model.residual.payload.empty() && model.residual.payload[0] == fast_residual::kPayloadVersion;
   out.u16(fast ? kFastFormatVersionMajor : kFormatVersionMajor);
   const bool scene = render || !model.placement.empty();
-  out.u16(fast ? (scene ? kFastRenderFormatVersionMinor : kFastFormatVersionMinor)
+  out.u16(fast ? (model.low_rank.components > 0 ? kFastPackedFormatVersionMinor
+                  : scene                       ? kFastRenderFormatVersionMinor
+                                                : kFastFormatVersionMinor)
                : (scene ? kRenderFormatVersionMinor : kFormatVersionMinor));
   out.u32(kFileFlagZeroBlocks | (model.meta.inbetween != Inbetween::Linear ? kFileFlagInbetween : 0));
   out.u32(uint32_t(sections.size()));

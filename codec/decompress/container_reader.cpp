@@ -280,7 +280,7 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
     }
     else if (tag == kCurves) ok = parse_curves(s, model);
     else if (tag == kSegments) ok = parse_segments(s, model);
-    else if (tag == kLowRank) ok = seen[0] && parse_low_rank(s, model);
+    else if (tag == kLowRank) ok = seen[0] && parse_low_rank(s, model, h.version_major == kFastFormatVersionMajor);
     else if (tag == kResidual) ok = parse_residual(s, model);
     else if (tag == kRender) ok = seen[0] && parse_render(s, model);
     else if (tag == kPlacement) ok = parse_placement(s, model);

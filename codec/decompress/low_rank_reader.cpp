@@ -1,5 +1,9 @@
 #include "codec/decompress/low_rank_reader.h"
 
+#include <zstd.h>
+
+#include <algorithm>
+
 #include "codec/common/int_coder.h"
 #include "codec/common/low_rank.h"
 #include "codec/common/low_rank_format.h"
@@ -10,7 +14,9 @@ namespace {
 using low_rank_format::coeff_context;
 using low_rank_format::kCoeffContexts;
 using low_rank_format::kCoeffShifts;
+using low_rank_format::kMaxSvarintBytes;
 using low_rank_format::kMeanShiftMask;
+using low_rank_format::kPackedDifferences;
 using low_rank_format::kPosed;
 using low_rank_format::kRangeCoded;
 using low_rank_format::predicted_coeff;
@@ -34,9 +40,37 @@ bool decode_differences(ByteReader& r, uint64_t count, size_t K, bool contexts, 
   }
   return dec.at_clean_end();
 }
+
+// Reads `count` svarint differences (R = 0) into *out through store.
+template <class Store>
+bool read_varint_differences(ByteReader& r, uint64_t count, size_t K, std::vector<int32_t>* out, const Store& store) {
+  if (count > r.remaining()) return false;  // >= 1 byte per value
+  out->assign(size_t(count), 0);
+  for (size_t i = 0; i < out->size(); ++i) {
+    int64_t c = 0;
+    if (!add_zigzag_delta(predicted_coeff(*out, i, K), r.varint(), &c) || !store(i, c)) return false;
+  }
+  return r.ok;
+}
+
+// Reads the packed form (Z = 1): the svarints' size, one zstd frame of exactly that many
+// bytes, which hold exactly `count` svarints. Sizes are checked before anything is allocated.
+template <class Store>
+bool read_packed_differences(ByteReader& r, uint64_t count, size_t K, std::vector<int32_t>* out, const Store& store) {
+  const uint64_t raw = r.varint(), stored = r.varint();
+  if (!r.ok || stored > r.remaining() || raw < count || raw > count * kMaxSvarintBytes ||
+      raw > std::max<uint64_t>(uint64_t(1) << 20, stored * 4096))
+    return false;
+  const uint8_t* p = r.take(size_t(stored));
+  std::vector<uint8_t> bytes(static_cast<size_t>(raw));
+  const size_t n = ZSTD_decompress(bytes.data(), bytes.size(), p, size_t(stored));
+  if (ZSTD_isError(n) || n != raw) return false;
+  ByteReader v(bytes.data(), bytes.size());
+  return read_varint_differences(v, count, K, out, store) && v.remaining() == 0;
+}
 }  // namespace
 
-bool parse_low_rank(ByteReader& r, Model* m) {
+bool parse_low_rank(ByteReader& r, Model* m, bool fast_format) {
   LowRankModel& lr = m->low_rank;
   const uint8_t first = r.u8();
   const bool ranged = first & kRangeCoded;
@@ -44,8 +78,10 @@ bool parse_low_rank(ByteReader& r, Model* m) {
   lr.shift = r.u8();
   const uint8_t third = r.u8();
   lr.mean_shift = third & kMeanShiftMask;
+  const bool packed = third & kPackedDifferences;
   if (!r.ok || lr.components == 0 || lr.components > kMaxLowRankComponents || lr.shift > kMaxLowRankShift ||
-      lr.mean_shift > lr.shift || (third & ~(kMeanShiftMask | kCoeffShifts | kPosed)) != 0)
+      lr.mean_shift > lr.shift || (third & ~(kMeanShiftMask | kCoeffShifts | kPosed | kPackedDifferences)) != 0 ||
+      (packed && (ranged || !fast_format)))
     return false;
   const size_t K = lr.components;
   lr.coeff_shifts.clear();
@@ -62,16 +98,10 @@ bool parse_low_rank(ByteReader& r, Model* m) {
     lr.coeffs[i] = int32_t(c);
     return true;
   };
-  if (ranged) {
-    if (!decode_differences(r, count, K, !lr.coeff_shifts.empty(), &lr.coeffs, store)) return false;
-  } else {
-    if (count > r.remaining()) return false;  // >= 1 byte per coefficient
-    lr.coeffs.resize(size_t(count));
-    for (size_t i = 0; i < lr.coeffs.size(); ++i) {
-      int64_t c = 0;
-      if (!add_zigzag_delta(predicted_coeff(lr.coeffs, i, K), r.varint(), &c) || !store(i, c)) return false;
-    }
-  }
+  const bool read = packed   ? read_packed_differences(r, count, K, &lr.coeffs, store)
+                    : ranged ? decode_differences(r, count, K, !lr.coeff_shifts.empty(), &lr.coeffs, store)
+                             : read_varint_differences(r, count, K, &lr.coeffs, store);
+  if (!read) return false;
   if (!lr.coeff_shifts.empty())
     for (size_t i = 0; i < lr.coeffs.size(); ++i) {
       const int64_t c = int64_t(lr.coeffs[i]) * (int64_t(1) << lr.coeff_shifts[i % K]);
@@ -95,7 +125,9 @@ bool parse_low_rank(ByteReader& r, Model* m) {
       return true;
     };
     const uint64_t values = uint64_t(m->meta.frame_count) * kLowRankPoseValues;
-    if (!decode_differences(r, values, kLowRankPoseValues, true, &lr.poses, store_pose)) return false;
+    if (!(packed ? read_packed_differences(r, values, kLowRankPoseValues, &lr.poses, store_pose)
+                 : decode_differences(r, values, kLowRankPoseValues, true, &lr.poses, store_pose)))
+      return false;
   }
   return r.ok;
 }

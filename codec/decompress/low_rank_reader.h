@@ -7,7 +7,8 @@
 namespace dcurve {
 
 // Parses an LRNK payload into model->low_rank; model->meta must already hold frame_count.
-// False on any field out of range or a count the remaining bytes cannot hold.
-bool parse_low_rank(ByteReader& r, Model* model);
+// fast_format: the file is of major 4, where packed differences are allowed. False on any
+// field out of range or a count the remaining bytes cannot hold.
+bool parse_low_rank(ByteReader& r, Model* model, bool fast_format);
 
 }  // namespace dcurve
