@@ -12,7 +12,6 @@
 #include "codec/common/residual.h"
 #include "codec/compress/container_writer.h"
 #include "codec/compress/residual_encoder.h"
-#include "codec/decompress/container_reader.h"
 #include "codec/decompress/model_prediction.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/curves/extract.h"
@@ -336,16 +335,14 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   m.render = build_render_mesh(anim, m.faces, opt.attributes);
   m.placement = anim.placement;
   m.materials = m.render.empty() ? MaterialSet{} : anim.materials;
-  *out = write_container(m, wo);
+  std::vector<SectionInfo> sections;
+  *out = write_container(m, wo, &sections);
 
   if (!measure_decoded(*out, anim, &rep.error, error)) return false;
   if (rep.error.max_error > opt.tolerance)
     return fail(error, "internal error: decoded max error " + std::to_string(rep.error.max_error) +
                            " exceeds the tolerance");
   rep.bytes = out->size();
-  std::vector<SectionInfo> sections;
-  Model written;
-  if (!read_container(out->data(), out->size(), &written, error, &sections)) return false;
   rep.connectivity_bytes = connectivity_bytes(sections);
   if (rep.connectivity_bytes > 0) report_face_order(m.faces, &rep);
   rep.low_rank_components = m.low_rank.components;

@@ -61,6 +61,8 @@ TEST(FacesCodec, RoundTripsCorpusMeshesExactly) {
     EXPECT_EQ(roundtrip_faces(faces), faces) << seq;
     std::vector<uint32_t> traversal = roundtrip_faces(faces, FaceOrder::Traversal);
     EXPECT_EQ(canonical_triangles(traversal), canonical_triangles(faces)) << seq;
+    // The writer knows the order without decoding: the list it reports is the decoded one.
+    EXPECT_EQ(traversal_order(faces), traversal) << seq;
   }
 }
 
@@ -75,7 +77,9 @@ TEST(FacesCodec, RoundTripsSoupsAndEdgeCases) {
     for (auto& v : soup) v = rng() % (n < 100 ? 10 : 100000);
     EXPECT_EQ(roundtrip_faces(soup), soup);
     EXPECT_EQ(canonical_triangles(roundtrip_faces(soup, FaceOrder::Traversal)), canonical_triangles(soup));
+    EXPECT_EQ(traversal_order(soup), roundtrip_faces(soup, FaceOrder::Traversal)) << n;
   }
+  EXPECT_EQ(traversal_order(edge), roundtrip_faces(edge, FaceOrder::Traversal));
   EXPECT_EQ(canonical_triangles(roundtrip_faces(edge, FaceOrder::Traversal)), canonical_triangles(edge));
 }
 
@@ -169,6 +173,40 @@ TEST(Container, RoundTripPreservesEveryField) {
   EXPECT_EQ(infos[1].tag, "FACE");
   EXPECT_FALSE(infos[1].required);
   EXPECT_EQ(write_container(back), bytes);  // deterministic writer
+}
+
+// What the writer reports of each section is what a reader finds there: the encoder takes
+// its section sizes from the writer instead of parsing its own output.
+TEST(Container, WriterReportsTheSectionsAReaderFinds) {
+  using Layout = WriteOptions::FaceLayout;
+  Model sheet = testing::sheet_model(6, 4);
+  sheet.faces = traversal_order(sheet.faces);
+  const std::vector<std::pair<Model, Layout>> cases = {{small_model(5, {0, 2, 4}), Layout::Smallest},
+                                                       {testing::without_faces(small_model(3)), Layout::Smallest},
+                                                       {sheet, Layout::Traversal},
+                                                       {sheet, Layout::Compact},
+                                                       {sheet, Layout::Exact}};
+  for (const auto& [model, layout] : cases) {
+    WriteOptions o;
+    o.face_layout = layout;
+    std::vector<SectionInfo> written, found;
+    const std::vector<uint8_t> bytes = write_container(model, o, &written);
+    Model back;
+    std::string err;
+    ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &back, &err, &found)) << err;
+    ASSERT_EQ(written.size(), found.size());
+    for (size_t i = 0; i < found.size(); ++i) {
+      const SectionInfo &w = written[i], &f = found[i];
+      EXPECT_EQ(w.tag, f.tag);
+      EXPECT_EQ(w.required, f.required) << f.tag;
+      EXPECT_EQ(w.compressed, f.compressed) << f.tag;
+      EXPECT_EQ(w.offset, f.offset) << f.tag;
+      EXPECT_EQ(w.header_bytes, f.header_bytes) << f.tag;
+      EXPECT_EQ(w.stored_bytes, f.stored_bytes) << f.tag;
+      EXPECT_EQ(w.raw_bytes, f.raw_bytes) << f.tag;
+      EXPECT_EQ(w.face_layout, f.face_layout) << f.tag;
+    }
+  }
 }
 
 // The writer never hands a reader other faces than model.faces: Traversal is used only for

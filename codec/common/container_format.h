@@ -1,12 +1,14 @@
 // What the writer and the reader of the .dcrv container share (format_spec/dcrv.md describes
-// every byte): the version, the file header, the section tags and flags, the coefficient
-// range. codec/compress/container_writer.h writes the container,
+// every byte): the version, the file header, the section tags and flags, what a section
+// takes, the coefficient range. codec/compress/container_writer.h writes the container,
 // codec/decompress/container_reader.h reads it.
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace dcurve {
 
@@ -34,6 +36,27 @@ constexpr uint32_t kFileFlagZeroBlocks = 1u;
 // (Metadata::inbetween). Set exactly when the rule is not Linear, so a 3.1 reader refuses
 // only files it would evaluate differently between frames.
 constexpr uint32_t kFileFlagInbetween = 2u;
+
+// One section as a file stores it: what the reader finds and the writer reports.
+struct SectionInfo {
+  std::string tag;        // four ASCII characters
+  bool required = false;
+  bool compressed = false;
+  uint64_t offset = 0;        // file offset of the section header
+  uint64_t header_bytes = 0;  // the section header's size: 28, or 10..26 when compact
+  uint64_t stored_bytes = 0;  // bytes in the file after the section header
+  uint64_t raw_bytes = 0;     // bytes after decompression
+  int face_layout = -1;       // FACE only: 0 exact, 1 traversal, 2 compact (codec/common/faces.h)
+};
+
+// Bytes the FACE section takes in the file, its section header included (0 without one):
+// what dropping connectivity would save.
+inline uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections) {
+  uint64_t bytes = 0;
+  for (const SectionInfo& s : sections)
+    if (s.tag == "FACE") bytes += s.stored_bytes + s.header_bytes;
+  return bytes;
+}
 
 // The fixed 28-byte file header.
 struct ContainerHeader {
@@ -70,6 +93,16 @@ const uint32_t kResidual = fourcc("RESI");
 const uint32_t kRender = fourcc("REND");
 const uint32_t kPlacement = fourcc("PLAC");
 const uint32_t kMaterials = fourcc("MATL");
+
+// A tag as four printable characters ('?' for others).
+inline std::string tag_name(uint32_t t) {
+  std::string s(4, '?');
+  for (int i = 0; i < 4; ++i) {
+    const char c = char((t >> (8 * i)) & 0xff);
+    s[size_t(i)] = (c >= 32 && c < 127) ? c : '?';
+  }
+  return s;
+}
 
 // Curve parameters u as 16-bit fixed point (CURV section).
 inline uint16_t u_to_fixed(float u) { return uint16_t(std::lround(std::clamp(u, 0.f, 1.f) * 65535.f)); }

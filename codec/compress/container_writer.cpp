@@ -13,7 +13,6 @@
 #include "codec/compress/faces_encoder.h"
 #include "codec/compress/low_rank_writer.h"
 #include "codec/compress/render_writer.h"
-#include "codec/decompress/faces_decoder.h"
 #include "codec/decompress/residual_decoder.h"
 
 namespace dcurve {
@@ -44,17 +43,16 @@ std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteO
   consider(encode_faces(faces, FaceOrder::Compact), Layout::Compact);
   // Traversal may reorder triangles, and other parts of the file (the residual coder's
   // neighbours) were built on model.faces: a candidate only when it gives them back as is.
-  std::vector<uint8_t> traversal = encode_faces(faces, FaceOrder::Traversal);
   std::vector<uint32_t> back;
-  if (decode_faces(traversal.data(), traversal.size(), &back, nullptr) && back == faces)
-    consider(std::move(traversal), Layout::Traversal);
+  std::vector<uint8_t> traversal = encode_faces(faces, FaceOrder::Traversal, &back);
+  if (back == faces) consider(std::move(traversal), Layout::Traversal);
   return best;
 }
 
-// A section header: tag, u8 flags, varint stored
-// size, varint raw size only when compressed, CRC.
-void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
-                 int level) {
+// A section header: tag, u8 flags, varint stored size, varint raw size only when
+// compressed, CRC; then the stored bytes. Returns what it wrote (offsets within `out`).
+SectionInfo put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
+                        int level) {
   bool compressed = false;
   std::vector<uint8_t> stored = stored_form(raw, level, &compressed);
   const size_t header_at = out.size();
@@ -66,7 +64,10 @@ void put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector
   // section into an unknown optional one that a reader would silently skip.
   uint32_t crc = crc32c(out.data().data() + header_at, out.size() - header_at);
   out.u32(crc32c(stored.data(), stored.size(), crc));
+  const SectionInfo info{tag_name(tag), required, compressed, header_at, out.size() - header_at, stored.size(),
+                         raw.size(), tag == kFaces && !raw.empty() ? int(raw[0]) : -1};
   out.bytes(stored.data(), stored.size());
+  return info;
 }
 
 std::vector<uint8_t> meta_bytes(const Model& m) {
@@ -148,7 +149,8 @@ size_t motion_record_size(const CurveMotion& m) {
   return w.data().size();
 }
 
-std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options) {
+std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options,
+                                     std::vector<SectionInfo>* infos) {
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;
   sections.emplace_back(kMeta, meta_bytes(model));
   if (options.connectivity && !model.faces.empty()) sections.emplace_back(kFaces, face_bytes(model.faces, options));
@@ -168,10 +170,14 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   if (render && !model.materials.empty()) sections.emplace_back(kMaterials, material_bytes(model));
 
   ByteWriter body;
+  if (infos) infos->clear();
   // Positions decode without FACE, REND and PLAC: a reader that skips them is still right.
-  for (const auto& [tag, raw] : sections)
-    put_section(body, tag, tag != kFaces && tag != kRender && tag != kPlacement && tag != kMaterials, raw,
-                options.zstd_level);
+  for (const auto& [tag, raw] : sections) {
+    SectionInfo info = put_section(body, tag, tag != kFaces && tag != kRender && tag != kPlacement && tag != kMaterials,
+                                   raw, options.zstd_level);
+    info.offset += kHeaderBytes;
+    if (infos) infos->push_back(std::move(info));
+  }
   ByteWriter out;
   out.bytes(kMagic, 4);
   const bool fast = !model.residual.payload.empty() && model.residual.payload[0] == fast_residual::kPayloadVersion;

@@ -34,7 +34,9 @@ uint64_t face_section_bytes(const std::vector<uint32_t>& faces, const WriteOptio
 
 // Serializes `model` (which must pass validate_model). The RESI section is written only when
 // model.residual.step > 0; FACE only when options.connectivity and faces are present.
-std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options = {});
+// sections: what each section takes in the file, as read_container would report it.
+std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options = {},
+                                     std::vector<SectionInfo>* sections = nullptr);
 
 // Bytes one SEGS motion record of `m` takes (dcrv.md section 8): 1 for a Zero motion; the
 // coefficients must already be quantized (quantize_coefficients).

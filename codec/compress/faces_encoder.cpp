@@ -5,7 +5,6 @@
 #include "codec/common/bytes.h"
 #include "codec/common/faces_exact.h"
 #include "codec/compress/faces_compact_encoder.h"
-#include "codec/decompress/faces_decoder.h"
 
 namespace dcurve {
 namespace {
@@ -63,8 +62,9 @@ std::vector<uint8_t> encode_exact(const std::vector<uint32_t>& faces) {
 // list itself. For each queued triangle (a, b, c) and each of its edges (a,b), (b,c), (c,a)
 // in turn, one symbol says whether the not-yet-emitted triangle across that edge follows,
 // as (b, a, x) with x coded as a delta to a. When the queue runs dry a new component starts
-// with three explicit ids. Processing stops the moment all triangles are out.
-std::vector<uint8_t> encode_traversal(const std::vector<uint32_t>& faces) {
+// with three explicit ids. Processing stops the moment all triangles are out. *order gets
+// the emitted list: what a reader decodes.
+std::vector<uint8_t> encode_traversal(const std::vector<uint32_t>& faces, std::vector<uint32_t>* order) {
   const size_t T = faces.size() / 3;
   // Every corner as (directed edge it starts, third corner, triangle * 3 + corner), sorted:
   // where several triangles share a directed edge (non-manifold or repeated triangles), the
@@ -85,7 +85,8 @@ std::vector<uint8_t> encode_traversal(const std::vector<uint32_t>& faces) {
                          faces[3 * t + (c + 2) % 3], uint32_t(3 * t + c)});
   std::sort(by_edge.begin(), by_edge.end());
   std::vector<uint8_t> done(T, 0), symbols;
-  std::vector<uint32_t> out;
+  std::vector<uint32_t>& out = *order;
+  out.clear();
   out.reserve(faces.size());
   ByteWriter ids;
   int64_t ref = 0;
@@ -129,8 +130,12 @@ std::vector<uint8_t> encode_traversal(const std::vector<uint32_t>& faces) {
 
 }  // namespace
 
-std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder order) {
-  if (order == FaceOrder::Traversal) return encode_traversal(faces);
+std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder order,
+                                  std::vector<uint32_t>* traversal) {
+  if (order == FaceOrder::Traversal) {
+    std::vector<uint32_t> unused;
+    return encode_traversal(faces, traversal ? traversal : &unused);
+  }
   if (order == FaceOrder::Compact) {
     std::vector<uint8_t> out{uint8_t(FaceOrder::Compact)};
     if (encode_compact_faces(faces, &out)) return out;
@@ -139,9 +144,8 @@ std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder 
 }
 
 std::vector<uint32_t> traversal_order(const std::vector<uint32_t>& faces) {
-  std::vector<uint8_t> bytes = encode_traversal(faces);
   std::vector<uint32_t> out;
-  decode_faces(bytes.data(), bytes.size(), &out, nullptr);
+  encode_traversal(faces, &out);
   return out;
 }
 

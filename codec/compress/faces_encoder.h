@@ -10,7 +10,9 @@ namespace dcurve {
 
 // Codes `faces` (3 vertex ids per triangle, any values < 2^32 - 1) into bytes. Compact falls
 // back to Exact for a list too compressible for the decoder's triangle-per-byte bound.
-std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder order = FaceOrder::Exact);
+// traversal: with FaceOrder::Traversal, the list a reader decodes from the bytes.
+std::vector<uint8_t> encode_faces(const std::vector<uint32_t>& faces, FaceOrder order = FaceOrder::Exact,
+                                  std::vector<uint32_t>* traversal = nullptr);
 
 // The triangle list a reader gets back from the Traversal layout: the same triangles and
 // windings, reordered and rotated; also the order the Compact layout codes smallest. An encoder that wants the compact layout puts its faces in

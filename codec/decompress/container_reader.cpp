@@ -36,15 +36,6 @@ constexpr uint64_t kMaxExpansion = 4096;
 constexpr uint64_t kExpansionFloor = 1u << 20;
 constexpr uint64_t kMaxRawSection = uint64_t(1) << 32;
 
-std::string tag_name(uint32_t t) {
-  std::string s(4, '?');
-  for (int i = 0; i < 4; ++i) {
-    char c = char((t >> (8 * i)) & 0xff);
-    s[i] = (c >= 32 && c < 127) ? c : '?';
-  }
-  return s;
-}
-
 // has_inbetween: file flag bit 1, META's last field is the in-between rule (format 3.2).
 bool parse_meta(ByteReader& r, bool has_inbetween, Model* m) {
   m->meta.vertex_count = r.u32();
@@ -168,13 +159,6 @@ bool peek_header(const uint8_t* data, size_t size, ContainerHeader* h) {
   h->section_count = r.u32();
   h->head_bytes = r.u64();
   return r.ok;
-}
-
-uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections) {
-  uint64_t bytes = 0;
-  for (const SectionInfo& s : sections)
-    if (s.tag == "FACE") bytes += s.stored_bytes + s.header_bytes;
-  return bytes;
 }
 
 bool read_container_header(const uint8_t* data, size_t size, uint64_t file_bytes, ContainerHeader* h,

@@ -17,22 +17,6 @@ namespace dcurve {
 // above it.
 uint64_t decoder_value_budget(size_t file_bytes);
 
-// One section as found in a file, for `dcurve info`.
-struct SectionInfo {
-  std::string tag;        // four ASCII characters
-  bool required = false;
-  bool compressed = false;
-  uint64_t offset = 0;        // file offset of the section header
-  uint64_t header_bytes = 0;  // the section header's size: 28, or 10..26 when compact
-  uint64_t stored_bytes = 0;  // bytes in the file after the section header
-  uint64_t raw_bytes = 0;     // bytes after decompression
-  int face_layout = -1;       // FACE only: 0 exact, 1 traversal, 2 compact (codec/common/faces.h)
-};
-
-// Bytes the FACE section takes in the file, its section header included (0 without one):
-// what dropping connectivity would save.
-uint64_t connectivity_bytes(const std::vector<SectionInfo>& sections);
-
 // Reads the header fields without checking anything else; false when size < 24 or the
 // magic is wrong. For tools that describe a file that read_container already accepted.
 bool peek_header(const uint8_t* data, size_t size, ContainerHeader* header);

@@ -38,8 +38,7 @@ bool slot_estimates(const Pricing& p, const std::vector<Segment>& segments, std:
   std::vector<int32_t> prediction;
   if (!stored_model_prediction(trial, &prediction, error)) return false;
   if (prediction.empty()) return true;
-  const double compression = segs_compression(trial, error);
-  if (compression < 0) return false;
+  const double compression = segs_compression(trial);
   std::vector<int64_t> err(n);
   std::vector<double> off(size_t(C) * 3), mean(size_t(C) * 3);
   for (size_t s = 0; s < segments.size(); ++s) {

@@ -46,8 +46,7 @@ bool choose_motions(Model* model, const Model& baseline, const EncodeContext& co
         baseline.meta.vertex_count != model->meta.vertex_count)
       return fail(error, "internal error: the baseline encode is on another grid");
     if (!coded_value_costs(baseline, &without, error)) return false;
-    compression = segs_compression(*model, error);
-    if (compression < 0) return false;
+    compression = segs_compression(*model);
   }
   for (;;) {
     std::vector<int32_t> prediction, q = context.rounded;

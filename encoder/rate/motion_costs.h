@@ -35,9 +35,9 @@ bool coded_value_costs(const Model& model, ValueCosts* out, std::string* error);
 // Bytes the SEGS section stores for motion `m` beyond a Zero motion's single byte, before zstd.
 double motion_record_bytes(const CurveMotion& m);
 
-// SEGS stored bytes per raw byte as zstd leaves them for `model` (1 when uncompressed,
-// -1 on an internal error).
-double segs_compression(const Model& model, std::string* error);
+// SEGS stored bytes per raw byte as zstd leaves them for `model` (1 when uncompressed), as
+// the writer reports it.
+double segs_compression(const Model& model);
 
 // Frames [first, last] whose Model prediction segment s of `model` gives: a boundary frame
 // shared with the next segment belongs to the next one, as in the decoder.
