@@ -22,27 +22,22 @@ double coarsest_step(double max_distance) { return 2.0 * max_distance / std::sqr
 // it. A finer grid shrinks the rounding against the ball, and lets motion maps and the
 // low-rank model move by fractions of the coarsest step, at the price of larger residuals
 // where a prediction does leave and of more bits for frames coded from nothing, which fast
-// motion pays for. The best refinement depends on the sequence (whole files at 1e-3:
-// horse-gallop 1.5, cantilever 2, chicken-crossing and neck 3, rope-small and sheet 4, the
-// 100-frame rope 8), and each trial is a whole plain encode: the search starts at
-// kFirstTrials and moves only towards the better, so most inputs cost four trials.
+// motion pays for. The best refinement depends on the sequence (the test clips spread over
+// most of the list; `dcurve encode IN -o OUT --json` reports the one chosen), and each
+// trial is a whole plain encode: the search starts at kFirstTrials and moves only towards
+// the better, so most inputs cost four trials.
 constexpr double kGridRefinements[kGridTrialSlots] = {1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0};
 constexpr size_t kFirstTrials[2] = {1, 3};
-// GridSearch::Bracket's two refinements (slots 3x and 8x): where the walk settled at 1e-3,
-// the ten inputs of the top-level README spread from 2x (horse-gallop, elastic-cow) to 8x
-// (blob, rope-small, sheet). Each input encoded at every fixed grid of {2, 3, 4, 8}: the
-// better of 3x and 8x came within 3.2 % of the walk's file on all ten (0.9 % on average),
-// the better of 2x and 8x within 10 % (cantilever), of 2x and 4x within 7.7 %. On the
-// 100-frame rope, tried on its middle 33 frames, the walk settled at 6x (53,976 bytes), the
-// bracket at 8x (48,792). One grid alone (kUntriedRefinement): 6x came within 10.3 % of the
-// walk's file on all eleven (elastic-cow), 4x within 7.7 % on the ten but 26 % on the rope
-// (68,110 bytes), 8x within 13.6 %, 3x within 11.7 % on the ten.
+// GridSearch::Bracket's two refinements (slots 3x and 8x): the grids the walk settles on
+// spread from the coarse to the fine end of the list, so one middle and one fine grid
+// bracket them. Of the pairs tried (each input encoded at every fixed --grid), the better of
+// 3x and 8x came closest to the walk's file on every input, while any one grid alone fell
+// far behind on some input, 6x (kUntriedRefinement) the least far.
 constexpr size_t kBracketTrials[2] = {3, 6};
-// Sizes are not unimodal in the refinement: the neck at 1e-3 coded 8,372 bytes at 3x,
-// about as many at 4x and 7,926 at 6x. Past a neighbour within this factor of the best,
-// the search tries the next refinement too. 1.02 missed rope-small's best once the low-rank
-// model could also be anchored on frame 0: 27,523 bytes at 4x, 28,152 at 6x (1.023x), 26,209
-// at 8x.
+// Sizes are not unimodal in the refinement: a refinement that codes about as small as the
+// best can sit between it and a smaller one. Past a neighbour within this factor of the
+// best, the search tries the next refinement too; a tighter factor stopped short of a
+// smaller file two refinements on.
 constexpr double kNearlyBest = 1.03;
 
 // Frames of the trial encodes: the whole animation up to kTrialVertexFrames vertices x

@@ -35,7 +35,7 @@ double grid_refinement(double step, double max_distance);
 
 // How widely choose_grid searches. Walk: from two refinements, then around the best while
 // it moves (four trials for most inputs). Bracket: two refinements, one near each end of
-// where the walk settles, side by side, and no more (grid.cpp gives what it costs in bytes).
+// where the walk settles, side by side, and no more (grid.cpp says why these two).
 enum class GridSearch { Walk, Bracket };
 
 // The refinement an encode uses without any trial (effort 1 of EncodeOptions): of the

@@ -83,9 +83,9 @@ void snap_basis_vector(const Traversal& t, const double* x_all, const int32_t* m
 // Codes the K + 1 pseudo-frames with the residual coder, each from its own mesh neighbours
 // (kind None) with the spatial mode that codes it smallest: the mean and the first
 // components are smooth fields (Parallelogram or Mean wins), the last ones mostly noise
-// that neighbours do not predict (Off wins). A mode per pseudo-frame instead of one for all:
-// neck 13,472 -> 12,984 bytes, rope-small 50,225 -> 48,714 at 1e-3. A basis vector is a
-// field over the mean shape, so Geometric takes its weights from the mean (g = 0).
+// that neighbours do not predict (Off wins). A mode per pseudo-frame instead of one for all,
+// since the smooth and the noisy ones each code smaller under their own. A basis vector is
+// a field over the mean shape, so Geometric takes its weights from the mean (g = 0).
 // Basis values are snapped (snap_basis_vector) under each mode tried; `values` receives the
 // ones coded. `exact`: the K basis vectors' amplitudes in basis steps. memo (may be null):
 // the modes and values chosen for this mean and step by earlier calls, extended here.
@@ -239,10 +239,10 @@ void refit_coefficients(const std::vector<int32_t>& q, const std::vector<int32_t
 // Per component, the coarsest coefficient unit 2^s (s <= S) whose rounding (at most 2^(s-1))
 // moves no prediction by more than kCoefficientMove basis steps:
 // max |basis_k| * 2^(s-1) / 2^S <= kCoefficientMove. Weak components (small basis values)
-// get coarse coefficients. Half a step against a quarter (at 1e-3): rope-small 27,523 bytes
-// against 30,614, neck 7,708 / 7,708, cantilever 1,933 / 1,983, blob 14,028 / 13,886; one
-// step (measured before the coefficient contexts, which took 0-0.4 % off): 29,520, 7,733,
-// 1,946, 14,169; one shared unit before: 32,532, 7,770, 2,130 and 14,506.
+// get coarse coefficients. Half a step balances the two costs: finer coefficients (a
+// quarter) cost more bytes than the residual saves on most inputs, coarser ones (a step)
+// move predictions enough to cost residual bytes; and a unit per component codes smaller
+// than one shared unit, which must suit the strongest component.
 constexpr double kCoefficientMove = 0.5;
 std::vector<uint8_t> coefficient_shifts(const std::vector<int32_t>& values, uint32_t K, size_t n, uint32_t S) {
   std::vector<uint8_t> shifts(K, 0);
@@ -272,10 +272,9 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
   for (uint32_t k = 0; k < K; ++k)
     for (double a : pca.amplitudes[k]) max_amplitude = std::max(max_amplitude, std::fabs(a));
   // A coefficient's rounding (<= 1/2) moves a prediction by max_amplitude / (2 step 2^S):
-  // at most one basis step once 2^S >= max_amplitude / (2 step^2). Half a step cost more
-  // coefficient bytes than it saved residual bytes (cantilever, neck, rope-small and
-  // chicken-crossing at 1e-3 all shrank by 0.1-0.6 % with one step); two steps lost on neck
-  // and chicken-crossing.
+  // at most one basis step once 2^S >= max_amplitude / (2 step^2). Half a step costs more
+  // coefficient bytes than it saves residual bytes; two steps move predictions enough to
+  // cost more residual bytes than they save in coefficients.
   uint32_t S = mean_shift;
   while (S < kMaxLowRankShift && std::ldexp(1.0, int(S)) < max_amplitude / (2 * basis_step * basis_step)) ++S;
   const double scale = basis_step * std::ldexp(1.0, int(S));

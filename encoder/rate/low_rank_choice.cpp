@@ -23,43 +23,36 @@ namespace {
 // Component counts screened (those the PCA provides), and the basis step (grid units) they
 // are screened at; the best count is then screened at the other steps. The residual layer
 // corrects what the basis rounds off, so the best step trades basis bytes against
-// residual bytes. On fine grids that step is coarser than a grid step: steps up to 4 took
-// the neck from 8,383 to 7,920 bytes and chicken-crossing from 57,904 to 56,820 at 1e-3
-// (up to 0.4 before; no input grew).
+// residual bytes. On fine grids that step is coarser than a grid step, hence steps up to
+// 4: a coarse basis costs few bytes, and the residual layer absorbs its rounding.
 constexpr uint32_t kComponentCounts[] = {1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64};
 constexpr double kFirstStep = 0.15;
 constexpr double kOtherSteps[] = {0.1, 0.25, 0.4, 0.6, 1.0, 1.6, 2.5, 4.0};
 // Frames the screening estimate samples (every ceil(F / this)-th frame).
 constexpr uint32_t kScreenFrames = 24;
 // Counts past the best one screened before giving up on larger ones: every count, since the
-// estimate is not unimodal in K (chicken-crossing at 1e-3: net saving falls from K = 1 to 6,
-// then rises to its best at K = 24).
+// estimate is not unimodal in K (the net saving can fall over the small counts and rise
+// again to its best at a large one).
 constexpr int kPatience = int(std::size(kComponentCounts));
 // Counts screened at every basis step (the best ones at the first step).
 constexpr int kRefinedCounts = 2;
 // The screening estimate ignores the coder's contexts and the per-cluster predictor choice,
-// so it misjudges savings both ways (it overstated them 1.15-1.25x on cantilever, neck and
-// blob; on chicken-crossing at 1e-3 it estimated 1.88x the section for K = 24 where the full
-// encode saved 29 KB net, 124,286 -> 94,943 bytes). On inputs of more than kCheapTrial
-// vertex-frames a full trial runs only when the estimated saving exceeds the section's raw
-// bytes (kTrialSavingFactor), which bounds the encode time lost to losing trials; smaller
-// inputs try one from kCheapTrialSavingFactor times: the sheet at 1e-3 (grid 4x) estimated
-// 0.92x its section for K = 48, whose full trial saved 6,689 bytes (78,888 -> 72,199).
-// The large inputs' bar was 1.5x until the per-cluster choice came to draw more from a model
-// than the estimate's Model-only plan shows: at 1.0 (1e-3) crane took K = 16, 128,108 ->
-// 114,031 bytes, cloth-sphere K = 40, 85,705 -> 81,983, horse-gallop K = 1, 87,761 ->
-// 86,602, whose winning trials had estimated 1.33-1.66x; 0.75 made the same files with more
-// losing trials (elastic-cow: four, none paying).
+// so it misjudges savings both ways. On inputs of more than kCheapTrial vertex-frames a
+// full trial runs only when the estimated saving exceeds the section's raw bytes
+// (kTrialSavingFactor), which bounds the encode time lost to losing trials; smaller
+// inputs, whose trials are cheap, try one from kCheapTrialSavingFactor times, since a
+// candidate estimated just below its section can still win. The large inputs' bar is no
+// higher than 1.0 because the per-cluster choice draws more from a model than the
+// estimate's Model-only plan shows, so winning trials can be estimated only a little above
+// their section; a lower bar added only losing trials.
 constexpr double kTrialSavingFactor = 1.0, kCheapTrialSavingFactor = 0.75;
 constexpr double kCheapTrial = double(1 << 18);
 // The low-rank rescue (choose_low_rank) screens the counts the first basis step cut off
 // while each saves at least this share of its section, and refines the best one only when
 // it does. At the finest step where a cut count fits, its section is near the residual
 // payload: saving less than half of it, the model explains too little of the residual for
-// any step to make it worth a trial. Over every grid trial of the ten inputs at 1e-3, no
-// cut count whose share there was below 0.9 gained at another step. The rope's 20 middle
-// frames (shares 0.31-0.62, no model kept) took 35 s to encode at --grid 6 with every cut
-// count screened, 14 s without the rescue.
+// any step to make it worth a trial, and screening such counts at every step would cost
+// much of an encode's time on inputs where no model is kept.
 constexpr double kRescueRatio = 0.5;
 // Posed anchors are screened only when some frame turns at least this far (radians) against
 // frame 0: below it the poses are nearly the identity, and the translation they would remove
@@ -147,8 +140,7 @@ FrameSample sample_frames(const Model& model, const std::vector<std::vector<floa
 // plan, per-cluster stage included, for each coding order of plan_options, the smallest
 // payload kept (the first among equals). One call with every order would refine only the
 // order whose per-frame plan codes smallest, and with a model the per-cluster choice can
-// reverse that ranking: at 1e-3 cloth-sphere 81,983 -> 79,959 bytes, crane 114,031 ->
-// 113,737, the other eight inputs the same files.
+// reverse that ranking.
 bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>& frames,
                             const std::vector<int32_t>& rounded, double snap_distance,
                             const ResidualPlanOptions& plan_options, const ResidualOptions& shared,
@@ -245,13 +237,11 @@ class LowRankSearch {
 // Two anchors, each screened over every count: the frame average, the classic centre, and
 // the first frame, often the cleanest shape of an animation (a rest pose, modelled or
 // generated, whose regular mesh codes in far fewer bytes than the average's blur of poses),
-// at the price of components that must also span the average's offset from it. At 1e-3
-// the first frame took the neck from 7,708 to 6,765 bytes and cantilever 1,933 -> 1,712;
-// alone it lost on the sheet (57,351 -> 58,618), hence the screening of both. The first
-// frame is screened only when it codes smaller than the rounded average: its shape is its
-// one advantage, and on horse-gallop, chicken-crossing and crane it has none (their
-// modelled meshes are no cleaner than the average), where its screening tripled the time of
-// a 5-frame crane encode. Each anchor again in frame 0's pose, for bodies that turn.
+// at the price of components that must also span the average's offset from it. Neither
+// anchor wins on every input, hence the screening of both. The first frame is screened only
+// when it codes smaller than the rounded average: its shape is its one advantage, and where
+// the modelled mesh is no cleaner than the average, screening it would multiply the encode
+// time for nothing. Each anchor again in frame 0's pose, for bodies that turn.
 void LowRankSearch::build_anchors() {
   const uint32_t max_components = std::min<uint32_t>(kMaxLowRankComponents, F_ - 1);
   pcas_.push_back(grid_components(rounded_, F_, n_, max_components, kMeanAnchor));
@@ -279,8 +269,8 @@ void LowRankSearch::build_anchors() {
 // today's bits of the same frames.
 void LowRankSearch::build_sample() {
   screen_options_.kinds = 1u << int(PredictorKind::Model);
-  // Without Fit: offered here too, it moved the screening's ranking (at 1e-3 blob coded
-  // 14,304 bytes instead of 11,638, cantilever 1,730 instead of 1,504).
+  // Without Fit: offered here too, it moved the screening's ranking towards candidates
+  // whose full encodes were larger.
   screen_options_.spatial_modes = ~(1u << int(SpatialMode::Fit));
   screen_options_.gop_sizes = {1};
   screen_options_.threads = threads_;
@@ -348,13 +338,12 @@ const Candidate* LowRankSearch::best_rescued(const GridComponents* pca) const {
 
 // Counts the first step cut off (from counts[cut] on, ascending), each at the first coarser
 // step where its section fits, set apart (`rescued_`) so that nothing else changes: the
-// first step's cut can hide the best count of an anchor (the sheet at 1e-3, grid 8x: the
-// frame-0 anchor's K = 56 codes 46,569 bytes, while its trials of the counts screened,
-// K = 1 and 2, coded 63,448 and 64,280), but ranking the rescued counts with the others
-// moved the trials elsewhere (blob 11,638 -> 11,749 bytes, rope-small 19,791 -> 19,852,
-// horse-gallop 68,352 -> 70,353). They get a trial of their own. The best of them is
-// refined as the screened counts are: at every other step, then halfway to its neighbours
-// at its best step; while they save enough (kRescueRatio).
+// first step's cut can hide the best count of an anchor (a large count at a coarse step
+// can beat every small count the first step kept), but ranking the rescued counts with the
+// others moves the trials away from the winners of inputs the rescue does not help. They
+// get a trial of their own. The best of them is refined as the screened counts are: at
+// every other step, then halfway to its neighbours at its best step; while they save
+// enough (kRescueRatio).
 bool LowRankSearch::rescue_cut_counts(const GridComponents& pca, const std::vector<uint32_t>& counts, size_t cut) {
   if (!options_.rescue_cut_counts || forced_) return true;
   auto saves_enough = [](const Candidate& c) { return c.saved_bytes >= kRescueRatio * c.section_bytes; };
@@ -414,10 +403,9 @@ bool LowRankSearch::screen_first_step(const GridComponents& pca, const std::vect
 // Other steps for the best count and the runner-up, unless even the coarsest could not pay:
 // a coarser basis saves less, and its section shrinks by about the step ratio at most. When
 // no count pays at the first step, the one that comes closest relative to its section: a
-// coarser step may make it pay (the sheet at 1e-3, grid 4x: K = 48 at step 0.4). The
-// runner-up too, since the first step's ranking is close and the best step differs by
-// count: horse-gallop at 1e-3 (grid 2x) ranks K = 3 and K = 1 within 250 bytes at step
-// 0.15; K = 1 at step 1 codes 85,910 bytes, K = 3 at its best 88,463.
+// coarser step may make it pay. The runner-up too, since the first step often ranks the top
+// counts closely and the best step differs by count: the runner-up at its own best step
+// can code smaller than the first at its.
 bool LowRankSearch::refine_steps(const GridComponents& pca) {
   std::vector<uint32_t> refined;
   for (int round = 0; round < kRefinedCounts; ++round) {
@@ -437,8 +425,8 @@ bool LowRankSearch::refine_steps(const GridComponents& pca) {
 
 // When the best count is the largest screened, the first step cut off the next ones (their
 // section alone outweighed the payload) before the net saving was seen to fall: at the
-// refined, coarser step they may pay, so they are screened at it, upwards while they are
-// (the sheet at 1e-3, grid 8x: K = 56 coded 55,023 bytes, 48 57,351). *best follows.
+// refined, coarser step they may pay, and beat the best count, so they are screened at it,
+// upwards while they are. *best follows.
 bool LowRankSearch::screen_larger_counts(const GridComponents& pca, const Candidate** best) {
   const uint32_t K = (*best)->model.components;
   const bool cut_off = std::none_of(candidates_.begin(), candidates_.end(), [&](const Candidate& c) {
@@ -458,11 +446,9 @@ bool LowRankSearch::screen_larger_counts(const GridComponents& pca, const Candid
 
 // Counts between the screened ones, halfway to the best one's screened neighbours, at the
 // best one's step: near its best the net saving is smooth enough in K for that to find what
-// the list misses (blob at 1e-3: K = 20 between 16 and 24, 14,028 -> 13,308 bytes). After
-// the step search, so that a count found here competes at a refined step, not the first
-// one. Once: a second halving (tried with the midpoints at the first step) lost on the
-// blob, its estimate preferring K = 18, whose full encode was larger (13,568 bytes), and
-// only the best estimate is encoded.
+// the list misses. After the step search, so that a count found here competes at a refined
+// step, not the first one. Once: a second halving follows the estimate's noise between
+// close counts to one whose full encode is larger, and only the best estimate is encoded.
 bool LowRankSearch::screen_halfway_counts(const GridComponents& pca, const Candidate& best) {
   std::vector<uint32_t> screened_counts;
   for (const Candidate& c : candidates_)
@@ -494,10 +480,10 @@ bool LowRankSearch::screen_anchor(const GridComponents& pca) {
 
 // A posed anchor is screened in full only when it beats its unposed twin at the twin's best
 // count and step, and otherwise leaves no candidate behind (no trial): the pose helps bodies
-// that turn while they deform, and screening and trying every posed anchor made the neck's
-// encode 43 % slower for the same file. At 1e-3 the blob's posed estimate at its twin's
-// K = 20 was 14,029 bytes net against 12,563 (its trial: 11,638 -> 10,185 bytes); the neck's
-// 13,487 against 13,732 and 14,867 against 15,298 (both trials lost).
+// that turn while they deform, and screening and trying every posed anchor slows the
+// encodes of the others for the same file. The one screening at the twin's best tells them
+// apart: where the posed anchor's estimate beats the twin's there, its trial can win;
+// where it does not, its trials lose.
 bool LowRankSearch::posed_beats_twin(size_t i, bool* beats) {
   *beats = false;
   const Candidate* twin = best_of(&pcas_[i - posed_from_], false);
@@ -546,19 +532,17 @@ bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* by
 
 // Full trials of the promising candidates, best estimate first; the smallest whole file wins.
 // Trials per anchor: the estimate ranks candidates of one anchor well enough, but not the
-// two anchors against each other (rope-small at 1e-3: it preferred the frame average's best,
-// 28,152 bytes, to the first frame's, 26,209). Skipping the other anchor's trial when its
-// estimate falls more than 3 % behind kept the other built-in scenes' files but lost on the
-// sheet: at grid 6x the average's best, estimated 10.5 % behind, coded 58,404 bytes against
-// the first frame's 60,078, and the grid search then stopped at 4x (58,190 against 57,351).
+// two anchors against each other (it can prefer the anchor whose best codes larger).
+// Skipping the other anchor's trial when its estimate falls a few percent behind loses
+// files: the estimate can put the winning anchor far behind, and a grid whose best anchor
+// went untried also misleads the grid search, which compares whole files.
 bool LowRankSearch::run_trials() {
   std::stable_sort(candidates_.begin(), candidates_.end(),
                    [](const Candidate& a, const Candidate& b) { return a.net_bytes > b.net_bytes; });
   best_bytes_ = forced_ ? UINT64_MAX : rep_.bytes_without;
   std::vector<std::pair<const GridComponents*, uint32_t>> tried;  // anchor, count
   // An anchor whose first trial saved less than half its estimate gets a second one, of
-  // another count: the estimate misjudged that count, maybe not the next (horse-gallop at
-  // 1e-3, grid 2x: K = 3 estimated 8,730 bytes net and saved 90; K = 1 then saved 2,643).
+  // another count: the estimate misjudged that count, maybe not the next.
   std::vector<const GridComponents*> disappointed;
   for (const Candidate& c : candidates_) {
     const auto same_anchor = [&](const std::pair<const GridComponents*, uint32_t>& t) { return t.first == c.pca; };
@@ -575,9 +559,8 @@ bool LowRankSearch::run_trials() {
       disappointed.push_back(c.pca);
   }
   // Per anchor, the best rescued count gets one more trial when its estimate beats every
-  // candidate the anchor had, so no file grows. At 1e-3: sheet 47,558 -> 46,569 bytes,
-  // cloth-sphere 76,945 -> 74,252, crane 103,204 -> 98,865; the other seven inputs the same
-  // files (horse-gallop runs two such trials, both losing).
+  // candidate the anchor had: an anchor whose best count the first step cut off still gets
+  // it tried, and since only a smaller whole file replaces the best, no file grows.
   for (const GridComponents& pca : pcas_) {
     const Candidate* c = best_rescued(&pca);
     const Candidate* screened = best_of(&pca, false);

@@ -19,11 +19,9 @@ struct LowRankChoiceOptions {
   // components (for studies; the file may get larger).
   int components = -1;
   // Full residual encodes tried with a low-rank model per anchor (the frame average, frame 0),
-  // best screened candidates first (one per component count), >= 1. A second trial on inputs
-  // of at most 2^18 vertex-frames (commit 85aa5e7) never won once the screening refined the
-  // best count's step: the first trial won all 25 choices the grid trials made on cantilever,
-  // neck, blob, rope-small and sheet at 1e-3, and the first three encode to the same bytes at
-  // 1e-2 and 1e-4 without it, 13-30 % faster.
+  // best screened candidates first (one per component count), >= 1. Once the screening
+  // refines the best count's step, the first trial is the one that wins, so a second one
+  // costs a full residual encode and does not change the file.
   uint32_t max_trials = 1;
   // Also screen components around the first frame, besides around the frame average.
   bool first_frame_anchor = true;

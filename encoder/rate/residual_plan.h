@@ -35,9 +35,8 @@ struct ResidualPlanOptions {
   // traversal positions per cluster (>= 1), clusters per motion map (>= 1) and the similar
   // poses offered per frame (extra_references for this layout's pool; the cluster plan uses
   // at most 6). Small clusters follow the mesh's parts, and different parts find different
-  // similar poses (6 instead of 3: horse-gallop 90,310 -> 87,798 bytes at 1e-3, no input
-  // grew); large ones pay for motion maps on few vertices, and more poses made cloth-sphere
-  // grow.
+  // similar poses, so they are offered more; large ones pay for motion maps on few
+  // vertices, and more poses there made files grow.
   struct ClusterLayout {
     uint32_t cluster_size, motion_block;
     uint32_t extra_references = 3;
