@@ -179,9 +179,9 @@ std::vector<int32_t> fit_weights(const Traversal& t, const int32_t* qg);
 std::vector<int32_t> spatial_weights(const Traversal& t, const int32_t* qg, SpatialMode mode);
 
 // Weight tables shared beyond one walk: an encoder's trial walks meet the same decoded
-// geometry frames again and again (horse-gallop at --grid 2: 5,519 tables computed, 1,851
-// distinct). weights() must return exactly spatial_weights(t, qg, mode); it may be called
-// from several threads at once.
+// geometry frames again and again, so most tables they ask for are repeats. weights() must
+// return exactly spatial_weights(t, qg, mode); it may be called from several threads at
+// once.
 class SpatialWeightsSource {
  public:
   virtual ~SpatialWeightsSource() = default;

@@ -12,10 +12,9 @@ namespace {
 
 // A slot is promising when its estimate is at most this times the baseline's bytes: the
 // estimate ignores snapping and the other spatial corrections, which can only help the
-// Model predictor, though it also ignores that clusters rarely follow one curve. Measured
-// at 1e-3 (pde, segments 4/8/16): the best slot of horse-gallop estimated 1.68 times its
-// baseline bytes (the full plan then kept no motion), rope-small's best 0.30 (the plan
-// kept none either).
+// Model predictor, though it also ignores that clusters rarely follow one curve. The
+// margin above 1 allows for that slack; a slot estimated well above its baseline is not
+// kept by the full plan (and even one estimated far below may not be).
 constexpr double kPromisingFactor = 1.25;
 
 struct Pricing {
