@@ -265,14 +265,17 @@ void LowRankSearch::build_anchors() {
   memos_.resize(pcas_.size());
 }
 
-// Screening: the Model predictor alone, time order, on a sample of the frames, against
-// today's bits of the same frames.
+// Screening: the Model predictor alone, time order, one predictor per frame, on a sample of
+// the frames, against today's bits of the same frames.
 void LowRankSearch::build_sample() {
   screen_options_.kinds = 1u << int(PredictorKind::Model);
   // Without Fit: offered here too, it moved the screening's ranking towards candidates
   // whose full encodes were larger.
   screen_options_.spatial_modes = ~(1u << int(SpatialMode::Fit));
   screen_options_.gop_sizes = {1};
+  // Without the per-cluster stage: with one predictor kind it has little to choose, and its
+  // two layouts planned every sampled frame twice more. The full trials keep it.
+  screen_options_.cluster_layouts.clear();
   screen_options_.threads = threads_;
   // An odd stride: hierarchical coding orders make every power-of-two-th frame dearer.
   sample_ = sample_frames(*model_, frames_, rounded_, ((F_ + kScreenFrames - 1) / kScreenFrames) | 1);
