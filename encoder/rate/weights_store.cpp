@@ -1,21 +1,42 @@
 #include "encoder/rate/weights_store.h"
 
 #include <algorithm>
+#include <iterator>
 
 #include "codec/common/crc32.h"
 
 namespace dcurve {
 
+namespace {
+uint64_t index_key(uint32_t fingerprint, uint32_t hash, SpatialMode mode) {
+  return (uint64_t(fingerprint) << 32 | hash) ^ (uint64_t(mode) << 56);
+}
+}  // namespace
+
 const SpatialWeightsStore::Entry* SpatialWeightsStore::find(uint32_t fingerprint, uint32_t hash, SpatialMode mode,
                                                             const int32_t* qg, size_t n) {
-  for (auto it = entries_.begin(); it != entries_.end(); ++it) {
+  const auto range = index_.equal_range(index_key(fingerprint, hash, mode));
+  for (auto i = range.first; i != range.second; ++i) {
+    const Entries::iterator it = i->second;
     if (it->fingerprint != fingerprint || it->hash != hash || it->mode != mode || it->geometry.size() != n ||
         !std::equal(it->geometry.begin(), it->geometry.end(), qg))
       continue;
-    entries_.splice(entries_.begin(), entries_, it);
+    entries_.splice(entries_.begin(), entries_, it);  // the index's iterator stays valid
     return &entries_.front();
   }
   return nullptr;
+}
+
+void SpatialWeightsStore::drop_oldest() {
+  const Entries::iterator oldest = std::prev(entries_.end());
+  const auto range = index_.equal_range(index_key(oldest->fingerprint, oldest->hash, oldest->mode));
+  for (auto i = range.first; i != range.second; ++i)
+    if (i->second == oldest) {
+      index_.erase(i);
+      break;
+    }
+  bytes_ -= oldest->bytes();
+  entries_.erase(oldest);
 }
 
 std::shared_ptr<const std::vector<int32_t>> SpatialWeightsStore::weights(const Traversal& t, const int32_t* qg,
@@ -37,11 +58,9 @@ std::shared_ptr<const std::vector<int32_t>> SpatialWeightsStore::weights(const T
   ++computed_;
   if (const Entry* e = find(t.fingerprint, hash, mode, qg, n)) return e->table;
   entries_.push_front({t.fingerprint, hash, mode, std::vector<int32_t>(qg, qg + n), table});
+  index_.emplace(index_key(t.fingerprint, hash, mode), entries_.begin());
   bytes_ += entries_.front().bytes();
-  while (bytes_ > budget_ && entries_.size() > 1) {
-    bytes_ -= entries_.back().bytes();
-    entries_.pop_back();
-  }
+  while (bytes_ > budget_ && entries_.size() > 1) drop_oldest();
   return table;
 }
 

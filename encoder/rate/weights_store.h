@@ -7,6 +7,7 @@
 #include <list>
 #include <memory>
 #include <mutex>
+#include <unordered_map>
 #include <vector>
 
 #include "codec/common/predictors.h"
@@ -37,12 +38,18 @@ class SpatialWeightsStore : public SpatialWeightsSource {
     std::shared_ptr<const std::vector<int32_t>> table;
     size_t bytes() const { return (geometry.size() + table->size()) * sizeof(int32_t); }
   };
+  using Entries = std::list<Entry>;
   // The entry for the key, moved to the front (most recent); nullptr if none. Needs mutex_.
   const Entry* find(uint32_t fingerprint, uint32_t hash, SpatialMode mode, const int32_t* qg, size_t n);
+  // Drops the least recently used entry and its index entry. Needs mutex_.
+  void drop_oldest();
 
   const size_t budget_;
   mutable std::mutex mutex_;
-  std::list<Entry> entries_;  // most recently used first
+  Entries entries_;  // most recently used first
+  // The entries by (fingerprint, hash, mode): a lookup compares the values of the few entries
+  // with that key rather than walking the list (thousands of entries for a small mesh).
+  std::unordered_multimap<uint64_t, Entries::iterator> index_;
   size_t bytes_ = 0, computed_ = 0, reused_ = 0;
 };
 
