@@ -17,7 +17,7 @@
 #include "test_util.h"
 
 namespace dcurve {
-namespace {
+namespace low_rank_packed {  // named: the sanitized build batches test files together
 
 constexpr uint8_t kPackedBit = 0x20;  // bit 5 of LRNK's third byte
 
@@ -173,5 +173,5 @@ TEST(LowRankPacked, PackedDifferencesInAFormat3FileAreRejected) {
   EXPECT_TRUE(same_frames(small, with_lrnk_payload(small, plain)));
 }
 
-}  // namespace
+}  // namespace low_rank_packed
 }  // namespace dcurve
