@@ -1,7 +1,5 @@
 #include "codec/compress/container_writer.h"
 
-#include <zstd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -13,6 +11,7 @@
 #include "codec/compress/faces_encoder.h"
 #include "codec/compress/low_rank_writer.h"
 #include "codec/compress/render_writer.h"
+#include "codec/compress/zstd_frame_writer.h"
 #include "codec/decompress/residual_decoder.h"
 
 namespace dcurve {
@@ -22,11 +21,9 @@ using namespace container_format;  // what both sides of the format share
 
 // The bytes a section stores: zstd when that is smaller, else the raw bytes.
 std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, bool* compressed) {
-  std::vector<uint8_t> stored(ZSTD_compressBound(raw.size()));
-  size_t n = ZSTD_compress(stored.data(), stored.size(), raw.data(), raw.size(), level);
-  *compressed = !ZSTD_isError(n) && n < raw.size();
-  if (*compressed) stored.resize(n); else stored = raw;
-  return stored;
+  std::vector<uint8_t> stored = zstd_frame(raw, level);
+  *compressed = !stored.empty() && stored.size() < raw.size();
+  return *compressed ? stored : raw;
 }
 
 std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {

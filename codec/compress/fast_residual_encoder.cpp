@@ -1,13 +1,12 @@
 #include "codec/compress/fast_residual_encoder.h"
 
-#include <zstd.h>
-
 #include <algorithm>
 
 #include "codec/common/bytes.h"
 #include "codec/common/residual.h"
 #include "codec/common/residual_walk.h"
 #include "codec/compress/residual_encoder.h"
+#include "codec/compress/zstd_frame_writer.h"
 
 namespace dcurve {
 
@@ -69,13 +68,12 @@ uint32_t append_frame_tokens(const int64_t* r, uint32_t V, ByteWriter* ops, Byte
 namespace {
 // A stream as its coding byte, sizes and bytes: zstd when that is smaller.
 void write_stream(const std::vector<uint8_t>& raw, ByteWriter* w) {
-  std::vector<uint8_t> packed(ZSTD_compressBound(raw.size()));
-  const size_t n = ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), 19);
-  if (!ZSTD_isError(n) && n + 2 < raw.size()) {
+  const std::vector<uint8_t> packed = zstd_frame(raw, 19);
+  if (!packed.empty() && packed.size() + 2 < raw.size()) {
     w->u8(kStreamZstd);
     w->varint(raw.size());
-    w->varint(n);
-    w->bytes(packed.data(), n);
+    w->varint(packed.size());
+    w->bytes(packed.data(), packed.size());
     return;
   }
   w->u8(kStreamRaw);

@@ -1,7 +1,5 @@
 #include "codec/compress/low_rank_writer.h"
 
-#include <zstd.h>
-
 #include <algorithm>
 
 #include "codec/common/bytes.h"
@@ -10,6 +8,7 @@
 #include "codec/common/low_rank.h"
 #include "codec/common/low_rank_format.h"
 #include "codec/compress/range_encoder.h"
+#include "codec/compress/zstd_frame_writer.h"
 
 namespace dcurve {
 namespace {
@@ -36,14 +35,11 @@ ByteWriter varint_differences(const std::vector<int32_t>& stored, size_t K) {
   return varints;
 }
 
-// The packed form (kPackedDifferences): the svarints' size, then one zstd frame of them.
-void put_packed_differences(const std::vector<int32_t>& stored, size_t K, ByteWriter* w) {
-  const ByteWriter varints = varint_differences(stored, K);
-  const std::vector<uint8_t>& raw = varints.data();
-  std::vector<uint8_t> packed(ZSTD_compressBound(raw.size()));
-  const size_t n = ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), 19);
-  packed.resize(ZSTD_isError(n) ? 0 : n);  // cannot fail with a bound-sized buffer
-  w->varint(raw.size());
+// The packed form (kPackedDifferences) of the svarints `varints`: their size, then one zstd
+// frame of them.
+void put_packed(const ByteWriter& varints, ByteWriter* w) {
+  const std::vector<uint8_t> packed = zstd_frame(varints.data(), 19);
+  w->varint(varints.size());
   w->varint(packed.size());
   w->bytes(packed.data(), packed.size());
 }
@@ -85,7 +81,7 @@ std::vector<uint8_t> low_rank_bytes(const Model& m) {
   if (shifted)
     for (uint8_t s : lr.coeff_shifts) w.u8(s);
   if (packed) {
-    put_packed_differences(stored, K, &w);
+    put_packed(varints, &w);
   } else if (ranged) {
     w.varint(stream.size());
     w.bytes(stream.data(), stream.size());
@@ -99,7 +95,7 @@ std::vector<uint8_t> low_rank_bytes(const Model& m) {
     // and the same range coder, one "component" per pose value.
     for (int32_t c : lr.pose_centre) w.varint(zigzag_encode(c));
     if (packed) {
-      put_packed_differences(lr.poses, kLowRankPoseValues, &w);
+      put_packed(varint_differences(lr.poses, kLowRankPoseValues), &w);
     } else {
       const std::vector<uint8_t> poses = range_coded_differences(lr.poses, kLowRankPoseValues, true);
       w.varint(poses.size());

@@ -1,7 +1,5 @@
 #include "codec/decompress/container_reader.h"
 
-#include <zstd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -17,6 +15,7 @@
 #include "codec/decompress/low_rank_reader.h"
 #include "codec/decompress/render_reader.h"
 #include "codec/decompress/residual_decoder.h"
+#include "codec/decompress/zstd_frame.h"
 
 namespace dcurve {
 namespace {
@@ -30,10 +29,6 @@ constexpr uint32_t kFileRequiredFlagsMask = 0xffffu;
 constexpr uint32_t kFileKnownRequiredFlags = kFileFlagZeroBlocks | kFileFlagInbetween;
 // Smallest compact section header: tag, flags, a one-byte size, CRC.
 constexpr size_t kCompactSectionHeaderMin = 4 + 1 + 1 + 4;
-// A decompressed section may be at most this many times its stored size (plus a floor):
-// the bound that keeps a hostile file from asking for unbounded memory.
-constexpr uint64_t kMaxExpansion = 4096;
-constexpr uint64_t kExpansionFloor = 1u << 20;
 constexpr uint64_t kMaxRawSection = uint64_t(1) << 32;
 
 // has_inbetween: file flag bit 1, META's last field is the in-between rule (format 3.2).
@@ -237,11 +232,10 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
       model->curves = singleton_curves(model->meta.vertex_count);
 
     if (flags & kSectionZstd) {
-      if (raw_size > kMaxRawSection || raw_size > std::max(kExpansionFloor, stored * kMaxExpansion))
+      if (raw_size > kMaxRawSection || !zstd_size_plausible(raw_size, stored))
         return fail(error, "section " + name + " claims an implausible size");
-      raw.resize(size_t(raw_size));
-      size_t n = ZSTD_decompress(raw.data(), raw.size(), p, size_t(stored));
-      if (ZSTD_isError(n) || n != raw_size) return fail(error, "section " + name + " does not decompress");
+      if (!decompress_exactly(p, size_t(stored), raw_size, &raw))
+        return fail(error, "section " + name + " does not decompress");
     } else {
       raw.assign(p, p + stored);
     }

@@ -1,13 +1,12 @@
 #include "codec/decompress/fast_residual_decoder.h"
 
-#include <zstd.h>
-
 #include <algorithm>
 
 #include "codec/common/bytes.h"
 #include "codec/common/crc32.h"
 #include "codec/common/error.h"
 #include "codec/common/residual_walk.h"
+#include "codec/decompress/zstd_frame.h"
 
 namespace dcurve {
 
@@ -21,7 +20,6 @@ size_t FastChunkDecoder::memory_bytes() const {
 namespace {
 // A stream of the chunk (coding byte, raw size, stored bytes) into out; max_raw bounds the
 // raw size before anything is allocated.
-// ZSTD_decompress alone: the WebAssembly build's zstd (web/zstd_shim) offers nothing else.
 bool read_stream(ByteReader& r, uint64_t max_raw, std::vector<uint8_t>* out, std::string* error) {
   const uint8_t coding = r.u8();
   const uint64_t raw = r.varint();
@@ -32,7 +30,7 @@ bool read_stream(ByteReader& r, uint64_t max_raw, std::vector<uint8_t>* out, std
   if (coding == kStreamZstd) {
     stored = r.varint();
     if (!r.ok) return fail(error, "fast residual chunk is truncated");
-    if (raw > std::max<uint64_t>(uint64_t(1) << 20, stored * 4096))
+    if (!zstd_size_plausible(raw, stored))
       return fail(error, "fast residual stream claims an implausible decompressed size");
   }
   const uint8_t* p = r.take(size_t(std::min<uint64_t>(stored, SIZE_MAX)));
@@ -41,9 +39,8 @@ bool read_stream(ByteReader& r, uint64_t max_raw, std::vector<uint8_t>* out, std
     out->assign(p, p + stored);
     return true;
   }
-  out->resize(size_t(raw));
-  const size_t n = ZSTD_decompress(out->data(), out->size(), p, size_t(stored));
-  if (ZSTD_isError(n) || n != raw) return fail(error, "fast residual stream does not decompress to its size");
+  if (!decompress_exactly(p, size_t(stored), raw, out))
+    return fail(error, "fast residual stream does not decompress to its size");
   return true;
 }
 

@@ -1,13 +1,10 @@
 #include "codec/decompress/low_rank_reader.h"
 
-#include <zstd.h>
-
-#include <algorithm>
-
 #include "codec/common/int_coder.h"
 #include "codec/common/low_rank.h"
 #include "codec/common/low_rank_format.h"
 #include "codec/decompress/range_decoder.h"
+#include "codec/decompress/zstd_frame.h"
 
 namespace dcurve {
 namespace {
@@ -59,12 +56,10 @@ template <class Store>
 bool read_packed_differences(ByteReader& r, uint64_t count, size_t K, std::vector<int32_t>* out, const Store& store) {
   const uint64_t raw = r.varint(), stored = r.varint();
   if (!r.ok || stored > r.remaining() || raw < count || raw > count * kMaxSvarintBytes ||
-      raw > std::max<uint64_t>(uint64_t(1) << 20, stored * 4096))
+      !zstd_size_plausible(raw, stored))
     return false;
-  const uint8_t* p = r.take(size_t(stored));
-  std::vector<uint8_t> bytes(static_cast<size_t>(raw));
-  const size_t n = ZSTD_decompress(bytes.data(), bytes.size(), p, size_t(stored));
-  if (ZSTD_isError(n) || n != raw) return false;
+  std::vector<uint8_t> bytes;
+  if (!decompress_exactly(r.take(size_t(stored)), size_t(stored), raw, &bytes)) return false;
   ByteReader v(bytes.data(), bytes.size());
   return read_varint_differences(v, count, K, out, store) && v.remaining() == 0;
 }
