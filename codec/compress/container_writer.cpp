@@ -8,10 +8,10 @@
 #include "codec/common/crc32.h"
 #include "codec/common/fast_residual.h"
 #include "codec/common/residual.h"
+#include "codec/common/residual_index.h"
 #include "codec/compress/faces_encoder.h"
 #include "codec/compress/low_rank_writer.h"
 #include "codec/compress/render_writer.h"
-#include "codec/compress/residual_encoder.h"
 #include "codec/compress/zstd_frame_writer.h"
 
 namespace dcurve {
@@ -119,6 +119,17 @@ std::vector<uint8_t> segment_bytes(const Model& m) {
 }
 
 
+// Bytes of the residual payload's header and chunk index: what RESI holds (the chunks
+// follow the sections). The payload is the writer's own, so its index reads.
+size_t residual_index_bytes(const Model& m) {
+  const std::vector<uint8_t>& p = m.residual.payload;
+  ResidualIndex index;
+  const bool faces = p.size() > 1 && p[1] != 0;
+  return read_residual_index(p.data(), p.size(), m.meta.frame_count, faces, UINT64_MAX, &index, nullptr)
+             ? index.index_bytes
+             : p.size();
+}
+
 std::vector<uint8_t> residual_bytes(const Model& m, size_t index_bytes) {
   ByteWriter w;
   w.f64(m.residual.step);
@@ -146,7 +157,7 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   if (model.low_rank.components > 0) sections.emplace_back(kLowRank, low_rank_bytes(model));
   size_t index_bytes = 0;
   if (model.residual.step > 0) {
-    index_bytes = residual_payload_index_bytes(model.residual.payload);
+    index_bytes = residual_index_bytes(model);
     sections.emplace_back(kResidual, residual_bytes(model, index_bytes));
   }
   // REND numbers render vertices over the stored faces: without them it has no meaning.

@@ -131,20 +131,6 @@ std::vector<uint8_t> assemble_residual_payload(uint8_t version, bool from_faces,
   return std::move(w.data());
 }
 
-size_t residual_payload_index_bytes(const std::vector<uint8_t>& payload) {
-  ByteReader r(payload.data(), payload.size());
-  r.u8();  // version
-  r.u8();  // from faces
-  r.varint();  // chunk frames
-  const uint64_t chunks = r.varint();
-  for (uint64_t c = 0; c < chunks && r.ok; ++c) {
-    r.varint();  // offset
-    r.varint();  // size
-    r.u32();     // checksum
-  }
-  return r.ok ? r.position() : payload.size();
-}
-
 std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int32_t>& q, const PredictorPlan* plan,
                                       const ResidualOptions& options) {
   return encode_residuals(model, q, single_chunk_plan(plan ? *plan : default_predictor_plan(model.meta.frame_count)),

@@ -31,9 +31,4 @@ std::vector<uint8_t> encode_residuals(const Model& model, const std::vector<int3
 std::vector<uint8_t> assemble_residual_payload(uint8_t version, bool from_faces, uint32_t chunk_frames,
                                                const std::vector<std::vector<uint8_t>>& chunks);
 
-// Bytes of the header and chunk index at the start of a payload assemble_residual_payload
-// wrote (what a container's RESI section holds; the chunk data follows the sections). The
-// whole payload when it is not one.
-size_t residual_payload_index_bytes(const std::vector<uint8_t>& payload);
-
 }  // namespace dcurve

@@ -9,15 +9,9 @@
 #include "codec/common/model.h"
 #include "codec/common/predictors.h"
 #include "codec/common/residual.h"
+#include "codec/common/residual_index.h"
 
 namespace dcurve {
-
-// Parses the header and chunk index at the start of a residual payload of a file with
-// `frame_count` frames and (has_faces) a FACE section. Rejects an index whose chunk count
-// disagrees with the frame count, whose chunks do not follow each other without gap or
-// overlap, or that claims more data than `data_limit` bytes.
-bool read_residual_index(const uint8_t* payload, size_t size, uint32_t frame_count, bool has_faces,
-                         uint64_t data_limit, ResidualIndex* index, std::string* error);
 
 // Decodes one chunk's bytes into q (frames * V * 3 values). plan (may be null) receives the
 // chunk's plan with its per-cluster choices. False with a message on malformed bytes; never

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 #include "codec/common/motion_compensation.h"
 #include "encoder/rate/plan_steps.h"
@@ -160,7 +164,7 @@ class ClusterPlanner {
   ClusterPlanner(const Model& model, const std::vector<std::vector<float>>& frames, double radius,
                  uint32_t cluster_size, uint32_t motion_block, uint32_t max_candidates, std::vector<int32_t>* q,
                  const ResidualOptions& options, const ResidualPlanOptions& po);
-  const PredictorPlan& plan() const { return plan_; }
+  PredictorPlan take_plan() { return std::move(plan_); }
   void plan_frame(uint32_t f);
 
  private:
@@ -489,7 +493,7 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
                                   const ResidualPlanOptions& po) {
   ClusterPlanner planner(model, frames, radius, cluster_size, motion_block, max_candidates, q, options, po);
   for (uint32_t f : order) planner.plan_frame(f);
-  PredictorPlan plan = planner.plan();
+  PredictorPlan plan = planner.take_plan();
   plan.order = order;
   return plan;
 }
