@@ -7,9 +7,6 @@
 
 namespace dcurve {
 
-using residual_walk::kFormatVersion;
-using residual_walk::kOldestFormatVersion;
-
 bool read_residual_index(const uint8_t* payload, size_t size, uint32_t F, bool has_faces, uint64_t data_limit,
                          ResidualIndex* index, std::string* error) {
   ByteReader r(payload, size);
@@ -17,7 +14,7 @@ bool read_residual_index(const uint8_t* payload, size_t size, uint32_t F, bool h
   const uint8_t from_faces = r.u8();
   const uint64_t chunk_frames = r.varint(), count = r.varint();
   if (!r.ok) return fail(error, "residual payload is truncated");
-  if ((version < kOldestFormatVersion || version > kFormatVersion) && version != fast_residual::kPayloadVersion)
+  if ((version < residual_walk::kOldestFormatVersion || version > residual_walk::kFormatVersion) && version != fast_residual::kPayloadVersion)
     return fail(error, "residual payload version " + std::to_string(version) + " is not supported");
   if (from_faces > 1 || from_faces != (has_faces ? 1 : 0))
     return fail(error, "residual payload was coded with a different neighbour structure (faces present or not)");
