@@ -18,6 +18,7 @@
 #include "encoder/curves/report.h"
 #include "encoder/face_order.h"
 #include "encoder/render_attributes.h"
+#include "encoder/work_meter.h"
 #include "encoder/rate/block_flags.h"
 #include "encoder/rate/fast_low_rank.h"
 #include "encoder/rate/fast_plan.h"
@@ -34,6 +35,9 @@
 
 namespace dcurve {
 namespace {
+
+// Grid trials of --effort 3's walk on most inputs, for the progress forecast.
+constexpr uint64_t kWalkTrials = 4;
 
 // What the decoder's float32 output can add to a vertex's error: a few roundings of the
 // largest coordinate.
@@ -87,6 +91,7 @@ struct GridStart {
   double snap = 0;
   SpatialWeightsSource* weights = nullptr;
   std::shared_ptr<const Traversal> traversal;
+  WorkMeter* meter = nullptr;  // counts the frames every plan of the encode plans; may be null
 };
 
 // The rate control's view of an encode of `anim` from `start`. Every effort plans every
@@ -98,6 +103,7 @@ EncodeContext context_of(const Animation& anim, const EncodeOptions& opt, const 
   c.shared.weights_source = start.weights;
   c.shared.traversal = start.traversal.get();
   c.plan.threads = opt.threads;
+  c.plan.meter = start.meter;
   c.write.connectivity = opt.connectivity;
   return c;
 }
@@ -173,6 +179,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                     s.snap = out->snap;
                     s.weights = out->weights;
                     s.traversal = out->traversal;
+                    s.meter = out->meter;
                     if (!quantize_to_grid(part, grid, &s.rounded, nullptr)) return SIZE_MAX;
                     EncodeOptions o = plain_opt;
                     o.threads = threads;
@@ -221,7 +228,6 @@ bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const 
     }
   MotionAlternativesReport estimate;
   if (!choose_motion_alternative(*m, plain, fitted, start.rounded, &m->segments, &estimate, error)) return false;
-  if (opt.progress) opt.progress(0.7);
   if (!opt.keep_all_motions && estimate.promising == 0) {
     // No motion comes near paying: the residual plan that would confirm it is skipped.
     *report = MotionChoiceReport();
@@ -246,6 +252,39 @@ void report_face_order(const std::vector<uint32_t>& faces, EncodeReport* rep) {
   rep->coder_order_connectivity_bytes = use.coder_order_bytes;
 }
 
+// The stages of an encode, in the order encode_animation runs them, for its WorkMeter.
+enum Stage { kGridStage, kPlainStage, kChunkStage, kMotionStage, kFinishStage, kStageCount };
+
+// Frame plans of one residual plan of F frames: one per coding order, then one per cluster
+// layout on the order that won.
+uint64_t residual_plan_frames(uint64_t F) {
+  const ResidualPlanOptions po;
+  return (po.gop_sizes.size() + po.cluster_layouts.size()) * F;
+}
+
+// Forecast frame plans of each Stage of encoding `anim` with `opt`.
+std::vector<uint64_t> forecast_stages(const Animation& anim, const EncodeOptions& opt) {
+  const uint64_t F = anim.frames.size();
+  const bool fast = opt.profile == Profile::Fast;
+  const bool low_rank = opt.low_rank != 0 && !fast;
+  auto plain = [&](uint64_t frames) { return residual_plan_frames(frames) + (low_rank ? forecast_low_rank_frames(uint32_t(frames)) : 0); };
+  std::vector<uint64_t> stages(kStageCount, 0);
+  const bool trials = opt.grid_refinement == 0 && opt.effort != kMinEffort;
+  const uint64_t trial_frames = grid_trial_frames(uint32_t(F), anim.vertex_count);
+  if (trials) stages[kGridStage] = (opt.effort == kMaxEffort ? kWalkTrials : 2) * plain(trial_frames);
+  if (!trials || trial_frames < F) stages[kPlainStage] = plain(F);
+  const bool chunk_choice = opt.chunk_frames == 0 && !(fast && opt.model == ModelChoice::None);
+  if (chunk_choice)
+    for (uint32_t K : kChunkCandidates)
+      if (K < F) stages[kChunkStage] += residual_plan_frames(F);
+  if (opt.model != ModelChoice::None) stages[kMotionStage] = residual_plan_frames(F);
+  // The fast layer (its own chunk lengths and low-rank models, about a plan's time) or block
+  // flags, the in-between rule, the file written and decoded: not counted in frames, so
+  // forecast as the time they take.
+  stages[kFinishStage] = fast ? residual_plan_frames(F) : F;
+  return stages;
+}
+
 }  // namespace
 
 // The float32 rounding may take at most a quarter of the tolerance.
@@ -257,7 +296,6 @@ double minimum_tolerance(const Animation& anim) {
 bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vector<uint8_t>* out,
                       EncodeReport* report, std::string* error) {
   auto start_time = std::chrono::steady_clock::now();
-  auto progress = [&](double f) { if (opt.progress) opt.progress(f); };
   if (!validate_animation(anim, error)) return false;
   if (!(opt.tolerance > 0 && opt.tolerance <= 0.5)) return fail(error, "tolerance must be in (0, 0.5]");
   if (opt.curve_points < 2) return fail(error, "target curve length must be at least 2 points");
@@ -279,13 +317,17 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   SpatialWeightsStore weights;
   GridStart start;
   start.weights = &weights;
+  WorkMeter meter(opt.progress);
+  meter.forecast(forecast_stages(anim, opt));
+  start.meter = &meter;
   Model m, residual_only;
   bool have_plain = false;
   if (!start_model(anim, opt, &start, &m, &residual_only, &have_plain, &rep.curve_fallback, error)) return false;
+  meter.end_stage();  // the grid (kGridStage)
   // The file without a PDE model comes first: with --model none it is the file, otherwise
   // the motion model has to beat it, value by value and as a whole file.
-  progress(0.1);
   if (!have_plain && !encode_plain(anim, opt, start, &m, &residual_only, error)) return false;
+  meter.end_stage();
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
   // The fast profile replaces this residual layer and picks its own chunks; only a PDE
@@ -296,7 +338,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   } else {
     *out = write_container(m, wo);
   }
-  progress(opt.model == ModelChoice::None ? 0.9 : 0.5);
+  meter.end_stage();
   if (opt.model != ModelChoice::None) {
     Model pde;
     MotionChoiceReport mrep;
@@ -312,8 +354,8 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
         rep.curve_fallback = curve_fallback;
       }
     }
-    progress(0.9);
   }
+  meter.end_stage();
   // The search measured without block flags; the chosen layer gets them where smaller.
   if (opt.profile == Profile::Fast) {
     FastLayerOptions fo;
@@ -360,7 +402,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   rep.bpvf = 8.0 * double(rep.bytes) / (double(rep.vertices) * rep.frames);
   rep.curves = curve_report(m.curves, anim.frames[0]);
   rep.encode_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  progress(1.0);
+  meter.end_stage();
   if (report) *report = rep;
   return true;
 }

@@ -87,7 +87,10 @@ struct EncodeOptions {
   // Precision of the render vertices' static attributes (UVs, colours, normals).
   AttributePrecision attributes;
   int threads = 0;            // 0: all hardware threads; output bytes never depend on it
-  std::function<void(double)> progress;  // called with the fraction done in [0, 1]; may be empty
+  // Called with the fraction done, in [0, 1] and never decreasing: frames planned against a
+  // forecast (encoder/work_meter.h), from the planning threads, one call at a time. May be
+  // empty.
+  std::function<void(double)> progress;
 };
 
 struct EncodeReport {

@@ -10,6 +10,7 @@
 
 #include "codec/common/motion_compensation.h"
 #include "encoder/rate/plan_steps.h"
+#include "encoder/work_meter.h"
 
 namespace dcurve {
 namespace {
@@ -492,7 +493,10 @@ PredictorPlan choose_cluster_plan(const Model& model, const std::vector<std::vec
                                   uint32_t max_candidates, std::vector<int32_t>* q, const ResidualOptions& options,
                                   const ResidualPlanOptions& po) {
   ClusterPlanner planner(model, frames, radius, cluster_size, motion_block, max_candidates, q, options, po);
-  for (uint32_t f : order) planner.plan_frame(f);
+  for (uint32_t f : order) {
+    planner.plan_frame(f);
+    if (po.meter) po.meter->add(1);
+  }
   PredictorPlan plan = planner.take_plan();
   plan.order = order;
   return plan;

@@ -50,6 +50,11 @@ constexpr uint64_t kTrialVertexFrames = 500000;
 
 }  // namespace
 
+uint32_t grid_trial_frames(uint32_t frames, uint32_t vertices) {
+  const uint64_t wanted = std::max<uint64_t>(kTrialFrames, kTrialVertexFrames / std::max(vertices, 1u));
+  return uint32_t(std::min<uint64_t>(frames, wanted));
+}
+
 double grid_refinement(double step, double max_distance) { return coarsest_step(max_distance) / step; }
 
 ResidualLayer make_grid(const Animation& anim, double max_distance, double refinement) {
@@ -75,8 +80,7 @@ ResidualLayer make_grid(const Animation& anim, double max_distance, double refin
 GridChoice choose_grid(const Animation& anim, double max_distance, int threads, const GridTrial& trial,
                        GridSearch search) {
   const uint32_t F = uint32_t(anim.frames.size());
-  const uint64_t wanted = std::max<uint64_t>(kTrialFrames, kTrialVertexFrames / std::max(anim.vertex_count, 1u));
-  const uint32_t count = uint32_t(std::min<uint64_t>(F, wanted)), first = (F - count) / 2;
+  const uint32_t count = grid_trial_frames(F, anim.vertex_count), first = (F - count) / 2;
   Animation part;
   part.vertex_count = anim.vertex_count;
   part.faces = anim.faces;

@@ -30,6 +30,10 @@ struct GridChoice {
   bool whole = false;  // the trials coded the whole animation: that trial is the encode
 };
 
+// Frames each grid trial codes for an animation of `frames` x `vertices`: all of them up to
+// a size, else a run from the middle (grid.cpp).
+uint32_t grid_trial_frames(uint32_t frames, uint32_t vertices);
+
 // How many times finer than the coarsest safe grid for `max_distance` a grid of `step` is.
 double grid_refinement(double step, double max_distance);
 

@@ -30,6 +30,9 @@ constexpr double kFirstStep = 0.15;
 constexpr double kOtherSteps[] = {0.1, 0.25, 0.4, 0.6, 1.0, 1.6, 2.5, 4.0};
 // Frames the screening estimate samples (every ceil(F / this)-th frame).
 constexpr uint32_t kScreenFrames = 24;
+// Screened candidates and full trials of a typical low-rank choice, for the progress
+// forecast only (the inputs of encode-bench.sh ranged over about 20-90 and 1-6).
+constexpr uint64_t kForecastCandidates = 40, kForecastTrials = 3;
 // Counts past the best one screened before giving up on larger ones: every count, since the
 // estimate is not unimodal in K (the net saving can fall over the small counts and rise
 // again to its best at a large one).
@@ -117,6 +120,9 @@ struct FrameSample {
   std::vector<int32_t> rounded;
 };
 
+// Every how many frames the screening samples one.
+uint32_t screen_stride(uint32_t F) { return ((F + kScreenFrames - 1) / kScreenFrames) | 1; }
+
 FrameSample sample_frames(const Model& model, const std::vector<std::vector<float>>& frames,
                           const std::vector<int32_t>& rounded, uint32_t stride) {
   const size_t n = size_t(model.meta.vertex_count) * 3;
@@ -178,6 +184,7 @@ class LowRankSearch {
                 const LowRankChoiceOptions& options, std::string* error)
       : model_(model), planned_(planned), frames_(context.frames), rounded_(context.rounded),
         snap_(context.snap_distance), write_options_(context.write), threads_(context.plan.threads),
+        meter_(context.plan.meter),
         shared_(context.shared), options_(options), error_(error),
         F_(model->meta.frame_count), n_(size_t(model->meta.vertex_count) * 3), forced_(options.components > 0) {}
 
@@ -211,6 +218,7 @@ class LowRankSearch {
   const double snap_;
   const WriteOptions& write_options_;
   const int threads_;  // 0: all cores; the result never depends on it
+  WorkMeter* const meter_;  // may be null
   ResidualOptions shared_;  // one traversal and the encode's weight tables for every walk
   const LowRankChoiceOptions& options_;
   std::string* error_;
@@ -277,8 +285,9 @@ void LowRankSearch::build_sample() {
   // two layouts planned every sampled frame twice more. The full trials keep it.
   screen_options_.cluster_layouts.clear();
   screen_options_.threads = threads_;
+  screen_options_.meter = meter_;
   // An odd stride: hierarchical coding orders make every power-of-two-th frame dearer.
-  sample_ = sample_frames(*model_, frames_, rounded_, ((F_ + kScreenFrames - 1) / kScreenFrames) | 1);
+  sample_ = sample_frames(*model_, frames_, rounded_, screen_stride(F_));
   sample_scale_ = double(F_) / double(sample_.frames.size());
   // Every screening plan snaps the same frames on the same grid.
   sample_runs_ = plan_axis_runs(sample_.model, sample_.input, snap_, threads_);
@@ -516,6 +525,7 @@ bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* by
   ResidualPlanOptions trial_plan;
   trial_plan.gop_sizes = {1};
   trial_plan.threads = threads_;
+  trial_plan.meter = meter_;
   const std::vector<uint32_t>& order_without = planned_.plan.chunks[0].order;
   if (order_without.size() > 2 && order_without[1] > 1) trial_plan.gop_sizes.push_back(order_without[1]);
   Model trial = *model_;
@@ -613,6 +623,13 @@ bool choose_low_rank(Model* model, const PlannedResidual& planned, const EncodeC
                      const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error) {
   LowRankSearch search(model, planned, context, options, error);
   return search.run(report);
+}
+
+// Screening plans each sampled frame once per candidate (a few dozen on the corpus), and
+// about three full trials plan the clip in two orders and both layouts.
+uint64_t forecast_low_rank_frames(uint32_t F) {
+  const uint64_t sampled = (F + screen_stride(F) - 1) / screen_stride(F);
+  return kForecastCandidates * sampled + kForecastTrials * 4 * uint64_t(F);
 }
 
 }  // namespace dcurve

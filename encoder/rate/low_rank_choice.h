@@ -58,4 +58,8 @@ struct PlannedResidual {
 bool choose_low_rank(Model* model, const PlannedResidual& planned, const EncodeContext& context,
                      const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error);
 
+// About how many frames choose_low_rank plans for F frames (screening plans and full
+// trials; the count depends on the input), for an encode's progress forecast.
+uint64_t forecast_low_rank_frames(uint32_t F);
+
 }  // namespace dcurve

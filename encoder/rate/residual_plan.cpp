@@ -5,6 +5,7 @@
 #include "encoder/parallel.h"
 #include "encoder/rate/cluster_plan.h"
 #include "encoder/rate/plan_steps.h"
+#include "encoder/work_meter.h"
 
 #include <algorithm>
 #include <array>
@@ -456,6 +457,7 @@ double plan_for_order(const Model& model, const Traversal& trav, const std::vect
     std::copy(best_frame.begin(), best_frame.end(), qf);
     decoded[f] = 1;
     total += best;
+    if (po.meter) po.meter->add(1);
   }
   *plan = uniform_plan(order, choices);
   return total;

@@ -10,6 +10,7 @@
 namespace dcurve {
 
 struct AxisRun;
+class WorkMeter;
 
 struct ResidualPlanOptions {
   // Decoded frames tried as a reference besides the nearest ones, picked by the smallest
@@ -50,6 +51,9 @@ struct ResidualPlanOptions {
   // the same frames on the same grid many times; null: each plan computes them. The result
   // never depends on it.
   const std::vector<std::vector<AxisRun>>* axis_runs = nullptr;
+  // Counts every frame planned, for the encode's progress; may be null. The result never
+  // depends on it.
+  WorkMeter* meter = nullptr;
 };
 
 // Estimated cost, bits, of coding `residuals` with an adaptive integer coder: their
