@@ -109,15 +109,16 @@ EncodeContext context_of(const Animation& anim, const EncodeOptions& opt, const 
 }
 
 // The encode without a PDE model: the residual layer alone, with a low-rank model where it
-// pays. `residual_only` (may be null) receives it before the low-rank choice: what a PDE
-// motion competes with inside a file, which cannot also carry a low-rank model. `bytes`
-// (may be null) receives the whole file's size, as the low-rank choice measured it.
+// pays; *coded receives what its payload codes. `residual_only` (may be null) receives it
+// before the low-rank choice: what a PDE motion competes with inside a file, which cannot
+// also carry a low-rank model. `bytes` (may be null) receives the whole file's size, as the
+// low-rank choice measured it.
 bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridStart& start, Model* m,
-                  Model* residual_only, std::string* error, uint64_t* bytes = nullptr) {
+                  CodedResidual* coded, Model* residual_only, std::string* error, uint64_t* bytes = nullptr) {
   *m = start.model;
   const EncodeContext context = context_of(anim, opt, start);
   std::vector<int32_t> q = start.rounded;
-  const ResidualPlan plan = choose_chunked_plan(*m, anim.frames, start.snap, &q, context.shared, context.plan);
+  ResidualPlan plan = choose_chunked_plan(*m, anim.frames, start.snap, &q, context.shared, context.plan);
   m->residual.payload = encode_residuals(*m, q, plan, context.shared);
   if (m->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
   if (residual_only) *residual_only = *m;
@@ -127,16 +128,17 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   lro.first_frame_anchor = opt.low_rank_first_frame;
   lro.posed_anchors = opt.low_rank_poses;
   LowRankChoiceReport rep;
-  if (!choose_low_rank(m, {plan, q}, context, lro, &rep, error)) return false;
+  if (!choose_low_rank(m, {plan, q}, context, lro, &rep, error, coded)) return false;
+  if (rep.components == 0) *coded = {std::move(plan), std::move(q), {}};
   if (bytes) *bytes = rep.bytes;
   return true;
 }
 
 // The model every encode starts from: faces, curves, and the grid chosen by trial encodes
 // of encode_plain. When the trials coded the whole animation, the winning trial is the
-// plain encode itself: *plain and *residual_only (as encode_plain fills them) receive it and
-// *have_plain is set.
-bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, Model* plain,
+// plain encode itself: *plain, *coded and *residual_only (as encode_plain fills them) receive
+// it and *have_plain is set.
+bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, Model* plain, CodedResidual* coded,
                  Model* residual_only, bool* have_plain, std::string* curve_fallback, std::string* error) {
   Model& m = out->model;
   const double L = bbox_diagonal(anim.frames[0]);
@@ -168,6 +170,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
     return quantize_to_grid(anim, m.residual, &out->rounded, error);
   }
   std::vector<Model> trials(kGridTrialSlots), trials_residual_only(kGridTrialSlots);
+  std::vector<CodedResidual> trials_coded(kGridTrialSlots);
   const GridChoice choice =
       choose_grid(anim, opt.tolerance * L, opt.threads,
                   [&](const ResidualLayer& grid, const Animation& part, size_t slot, int threads) -> size_t {
@@ -184,7 +187,8 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                     EncodeOptions o = plain_opt;
                     o.threads = threads;
                     uint64_t bytes = 0;
-                    if (!encode_plain(part, o, s, &trials[slot], &trials_residual_only[slot], nullptr, &bytes))
+                    if (!encode_plain(part, o, s, &trials[slot], &trials_coded[slot], &trials_residual_only[slot], nullptr,
+                                      &bytes))
                       return SIZE_MAX;
                     return size_t(bytes);
                   },
@@ -194,6 +198,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
   *have_plain = choice.whole;
   if (choice.whole) {
     *plain = std::move(trials[choice.slot]);
+    *coded = std::move(trials_coded[choice.slot]);
     *residual_only = std::move(trials_residual_only[choice.slot]);
   }
   return quantize_to_grid(anim, m.residual, &out->rounded, error);
@@ -321,12 +326,15 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   meter.forecast(forecast_stages(anim, opt));
   start.meter = &meter;
   Model m, residual_only;
+  CodedResidual coded;  // what m's residual payload codes, while coded_valid
+  bool coded_valid = true;
   bool have_plain = false;
-  if (!start_model(anim, opt, &start, &m, &residual_only, &have_plain, &rep.curve_fallback, error)) return false;
+  if (!start_model(anim, opt, &start, &m, &coded, &residual_only, &have_plain, &rep.curve_fallback, error))
+    return false;
   meter.end_stage();  // the grid (kGridStage)
   // The file without a PDE model comes first: with --model none it is the file, otherwise
   // the motion model has to beat it, value by value and as a whole file.
-  if (!have_plain && !encode_plain(anim, opt, start, &m, &residual_only, error)) return false;
+  if (!have_plain && !encode_plain(anim, opt, start, &m, &coded, &residual_only, error)) return false;
   meter.end_stage();
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
@@ -334,7 +342,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   // model's comparison below needs format 3's chosen file.
   const bool fast_alone = opt.profile == Profile::Fast && opt.model == ModelChoice::None;
   if (opt.chunk_frames == 0 && !fast_alone) {
-    if (!choose_chunk_frames(&m, context_of(anim, opt, start), out, error)) return false;
+    if (!choose_chunk_frames(&m, &coded, context_of(anim, opt, start), out, error)) return false;
   } else {
     *out = write_container(m, wo);
   }
@@ -350,6 +358,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
       if (opt.keep_all_motions || with.size() < out->size()) {
         out->swap(with);
         m = std::move(pde);
+        coded_valid = false;
         rep.motions_kept = mrep.kept;
         rep.curve_fallback = curve_fallback;
       }
@@ -366,7 +375,7 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     if (choose_model ? !choose_fast_low_rank(&m, anim.frames, start.rounded, fo, error)
                      : !encode_fast_layer(&m, anim.frames, fo, error) || !fast_low_rank_basis(&m, error))
       return false;
-  } else if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error)) {
+  } else if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error, coded_valid ? &coded : nullptr)) {
     return false;
   }
   if (!choose_inbetween(&m, anim.frames, opt.inbetween, error)) return false;

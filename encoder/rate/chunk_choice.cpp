@@ -23,15 +23,16 @@ std::vector<uint32_t> candidate_lengths(uint32_t F) {
 }
 
 // *trial's residual layer coded with chunks of K frames (its Model predictions given or
-// null), planned with `plan`; its file.
-bool code_with_length(Model* trial, uint32_t K, const EncodeContext& context, const std::vector<int32_t>* prediction,
-                      const ResidualPlanOptions& plan, std::vector<uint8_t>* file, std::string* error) {
+// null), planned with `plan`; its plan and values in *coded, its file in *file.
+bool code_with_length(Model* trial, CodedResidual* coded, uint32_t K, const EncodeContext& context,
+                      const std::vector<int32_t>* prediction, const ResidualPlanOptions& plan,
+                      std::vector<uint8_t>* file, std::string* error) {
   trial->residual.chunk_frames = K;
   ResidualOptions ro = context.shared;
   ro.model_prediction = prediction;
-  std::vector<int32_t> q = context.rounded;
-  const ResidualPlan chunked = choose_chunked_plan(*trial, context.frames, context.snap_distance, &q, ro, plan);
-  trial->residual.payload = encode_residuals(*trial, q, chunked, ro);
+  coded->values = context.rounded;
+  coded->plan = choose_chunked_plan(*trial, context.frames, context.snap_distance, &coded->values, ro, plan);
+  trial->residual.payload = encode_residuals(*trial, coded->values, coded->plan, ro);
   if (trial->residual.payload.empty()) return fail(error, "internal error: the chunked residual plan is invalid");
   *file = write_container(*trial, context.write);
   return true;
@@ -39,13 +40,15 @@ bool code_with_length(Model* trial, uint32_t K, const EncodeContext& context, co
 
 }  // namespace
 
-bool choose_chunk_frames(Model* model, const EncodeContext& context, std::vector<uint8_t>* file, std::string* error) {
+bool choose_chunk_frames(Model* model, CodedResidual* coded, const EncodeContext& context, std::vector<uint8_t>* file,
+                         std::string* error) {
   const uint32_t F = model->meta.frame_count;
-  std::vector<int32_t> prediction;
-  if (has_model_prediction(*model) && !model_grid_prediction(*model, UINT64_MAX, &prediction, error)) return false;
-  const std::vector<int32_t>* predicted = prediction.empty() ? nullptr : &prediction;
+  if (has_model_prediction(*model) == coded->prediction.empty())
+    return fail(error, "internal error: the chunk choice lacks the Model prediction");
+  const std::vector<int32_t>* predicted = coded->prediction.empty() ? nullptr : &coded->prediction;
   const std::vector<uint32_t> lengths = candidate_lengths(F);
   std::vector<Model> trials(lengths.size(), *model);
+  std::vector<CodedResidual> trials_coded(lengths.size());
   std::vector<std::vector<uint8_t>> files(lengths.size());
   const uint32_t current = std::min(std::max(model->residual.chunk_frames, 1u), F);
   // The lengths are coded side by side, sharing the threads; each writes its own slot.
@@ -57,7 +60,8 @@ bool choose_chunk_frames(Model* model, const EncodeContext& context, std::vector
       files[i] = write_container(*model, context.write);
       return;
     }
-    if (!code_with_length(&trials[i], lengths[i], context, predicted, each, &files[i], &errors[i])) files[i].clear();
+    if (!code_with_length(&trials[i], &trials_coded[i], lengths[i], context, predicted, each, &files[i], &errors[i]))
+      files[i].clear();
   });
   for (size_t i = 0; i < lengths.size(); ++i)
     if (files[i].empty()) return fail(error, errors[i]);
@@ -65,7 +69,11 @@ bool choose_chunk_frames(Model* model, const EncodeContext& context, std::vector
   for (const std::vector<uint8_t>& f : files) smallest = std::min(smallest, f.size());
   for (size_t i = 0; i < lengths.size(); ++i)
     if (double(files[i].size()) <= double(smallest) * (1 + kChunkSlack)) {
-      *model = std::move(trials[i]);
+      if (lengths[i] != current) {
+        *model = std::move(trials[i]);
+        coded->plan = std::move(trials_coded[i].plan);
+        coded->values = std::move(trials_coded[i].values);
+      }
       file->swap(files[i]);
       return true;
     }

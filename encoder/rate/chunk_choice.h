@@ -11,6 +11,7 @@
 #include "codec/common/model.h"
 #include "codec/common/predictors.h"
 #include "codec/compress/container_writer.h"
+#include "encoder/rate/coded_residual.h"
 #include "encoder/rate/encode_context.h"
 
 namespace dcurve {
@@ -24,7 +25,9 @@ constexpr double kChunkSlack = 0.02;
 
 // Recodes model->residual (its grid, faces, curves and low-rank model kept) at each
 // candidate length from the context's grid values, and leaves the chosen one in *model, its
-// file in *file.
-bool choose_chunk_frames(Model* model, const EncodeContext& context, std::vector<uint8_t>* file, std::string* error);
+// file in *file. *coded is what model->residual's payload codes (its Model prediction the
+// one every length subtracts), and receives the chosen payload's plan and values.
+bool choose_chunk_frames(Model* model, CodedResidual* coded, const EncodeContext& context, std::vector<uint8_t>* file,
+                         std::string* error);
 
 }  // namespace dcurve

@@ -78,4 +78,10 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
                        const Traversal* traversal = nullptr, std::vector<int32_t>* mean_and_basis = nullptr,
                        BasisCoding coding = BasisCoding::Range);
 
+// The Model predictor of frames 0 .. F - 1 (frame-major, n = V * 3 values each) from the
+// values a basis payload codes (mean_and_basis as quantize_low_rank returns them): what a
+// decoder computes after decoding that payload, without decoding it.
+std::vector<int32_t> low_rank_prediction(const LowRankModel& lr, const std::vector<int32_t>& mean_and_basis, uint32_t F,
+                                         size_t n);
+
 }  // namespace dcurve

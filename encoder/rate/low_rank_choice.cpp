@@ -142,36 +142,37 @@ FrameSample sample_frames(const Model& model, const std::vector<std::vector<floa
   return s;
 }
 
-// Residual plan and payload of `trial` with its low-rank prediction (full trial): a whole
-// plan, per-cluster stage included, for each coding order of plan_options, the smallest
-// payload kept (the first among equals). One call with every order would refine only the
-// order whose per-frame plan codes smallest, and with a model the per-cluster choice can
-// reverse that ranking.
-bool encode_with_prediction(Model* trial, const std::vector<std::vector<float>>& frames,
+// Residual plan and payload of `trial` with its low-rank prediction, coded->prediction (full
+// trial): a whole plan, per-cluster stage included, for each coding order of plan_options,
+// the smallest payload kept (the first among equals), and its plan and values in *coded.
+// One call with every order would refine only the order whose per-frame plan codes
+// smallest, and with a model the per-cluster choice can reverse that ranking.
+bool encode_with_prediction(Model* trial, CodedResidual* coded, const std::vector<std::vector<float>>& frames,
                             const std::vector<int32_t>& rounded, double snap_distance,
                             const ResidualPlanOptions& plan_options, const ResidualOptions& shared,
                             std::string* error) {
-  std::vector<int32_t> prediction;
-  if (!model_grid_prediction(*trial, UINT64_MAX, &prediction, error)) return false;
   ResidualOptions ro = shared;
-  ro.model_prediction = &prediction;
+  ro.model_prediction = &coded->prediction;
   const size_t orders = plan_options.gop_sizes.size();
   std::vector<std::vector<uint8_t>> payloads(orders);
+  std::vector<ResidualPlan> plans(orders);
+  std::vector<std::vector<int32_t>> values(orders, rounded);
   // The orders run side by side and share the threads.
   const int each = threads_per_job(plan_options.threads, orders);
   parallel_for(orders, plan_options.threads, [&](size_t i) {
     ResidualPlanOptions one = plan_options;
     one.gop_sizes = {plan_options.gop_sizes[i]};
     one.threads = each;
-    std::vector<int32_t> q = rounded;
-    const ResidualPlan plan = choose_chunked_plan(*trial, frames, snap_distance, &q, ro, one);
-    payloads[i] = encode_residuals(*trial, q, plan, ro);
+    plans[i] = choose_chunked_plan(*trial, frames, snap_distance, &values[i], ro, one);
+    payloads[i] = encode_residuals(*trial, values[i], plans[i], ro);
   });
-  trial->residual.payload.clear();
-  for (std::vector<uint8_t>& p : payloads)
-    if (!p.empty() && (trial->residual.payload.empty() || p.size() < trial->residual.payload.size()))
-      trial->residual.payload = std::move(p);
-  if (trial->residual.payload.empty()) return fail(error, "internal error: the low-rank residual plan is invalid");
+  size_t best = orders;
+  for (size_t i = 0; i < orders; ++i)
+    if (!payloads[i].empty() && (best == orders || payloads[i].size() < payloads[best].size())) best = i;
+  if (best == orders) return fail(error, "internal error: the low-rank residual plan is invalid");
+  trial->residual.payload = std::move(payloads[best]);
+  coded->plan = std::move(plans[best]);
+  coded->values = std::move(values[best]);
   return true;
 }
 
@@ -189,11 +190,12 @@ class LowRankSearch {
         F_(model->meta.frame_count), n_(size_t(model->meta.vertex_count) * 3), forced_(options.components > 0) {}
 
   // False only on an internal error; *report as choose_low_rank fills it.
-  bool run(LowRankChoiceReport* report);
+  bool run(LowRankChoiceReport* report, CodedResidual* kept);
 
  private:
   void build_anchors();
   void build_sample();
+  bool quantize(const GridComponents& pca, uint32_t K, double step, Model* trial, std::vector<int32_t>* mean_and_basis);
   bool screen(const GridComponents& pca, uint32_t K, double step, bool* screened, std::vector<Candidate>* into);
   bool screen(const GridComponents& pca, uint32_t K, double step, bool* screened) {
     return screen(pca, K, step, screened, &candidates_);
@@ -240,6 +242,7 @@ class LowRankSearch {
   std::vector<BasisMemo> memos_;  // per anchor
   uint64_t best_bytes_ = 0;
   Model best_model_;
+  CodedResidual best_coded_;  // what best_model_'s payload codes
 };
 
 // Two anchors, each screened over every count: the frame average, the classic centre, and
@@ -294,6 +297,16 @@ void LowRankSearch::build_sample() {
   screen_options_.axis_runs = &sample_runs_;
 }
 
+// K components of `pca` at `step` into trial->low_rank, refitted to the frames they came
+// from; *mean_and_basis receives the values its basis payload codes. False when a value
+// leaves the format's ranges.
+bool LowRankSearch::quantize(const GridComponents& pca, uint32_t K, double step, Model* trial,
+                             std::vector<int32_t>* mean_and_basis) {
+  const std::vector<int32_t>& refit = pca.poses.empty() ? rounded_ : poses_.aligned;
+  return quantize_low_rank(pca, K, step, mean_shift_for(pca, step), threads_, trial, &refit,
+                           &memos_[size_t(&pca - pcas_.data())], shared_.traversal, mean_and_basis);
+}
+
 // Screens count K at `step` into `into`. A model whose section alone outweighs today's
 // residual payload cannot pay and is skipped (*screened false).
 bool LowRankSearch::screen(const GridComponents& pca, uint32_t K, double step, bool* screened,
@@ -301,14 +314,10 @@ bool LowRankSearch::screen(const GridComponents& pca, uint32_t K, double step, b
   *screened = false;
   Model trial = *model_;
   std::vector<int32_t> mean_and_basis;
-  const std::vector<int32_t>& refit = pca.poses.empty() ? rounded_ : poses_.aligned;
-  if (!quantize_low_rank(pca, K, step, mean_shift_for(pca, step), threads_, &trial, &refit,
-                         &memos_[size_t(&pca - pcas_.data())], shared_.traversal, &mean_and_basis))
-    return true;
+  if (!quantize(pca, K, step, &trial, &mean_and_basis)) return true;
   const double section = double(low_rank_bytes(trial).size());
   if (!forced_ && section >= double(model_->residual.payload.size())) return true;
-  // The sampled frames' predictions, from the values the basis payload codes (the full
-  // trials decode the payload, as a decoder does).
+  // The sampled frames' predictions, from the values the basis payload codes.
   std::vector<int32_t> sampled(sample_.frames.size() * n_), q = sample_.rounded;
   std::vector<int64_t> sums(n_);
   for (size_t j = 0; j < sample_.frames.size(); ++j)
@@ -528,14 +537,22 @@ bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* by
   trial_plan.meter = meter_;
   const std::vector<uint32_t>& order_without = planned_.plan.chunks[0].order;
   if (order_without.size() > 2 && order_without[1] > 1) trial_plan.gop_sizes.push_back(order_without[1]);
+  // The candidate quantized again (as screened: the memo makes it quick) for the values its
+  // basis payload codes, which give the Model prediction of every frame.
   Model trial = *model_;
-  trial.low_rank = c.model;
-  if (!encode_with_prediction(&trial, frames_, rounded_, snap_, trial_plan, shared_, error_)) return false;
+  std::vector<int32_t> mean_and_basis;
+  if (!quantize(*c.pca, c.model.components, c.basis_step, &trial, &mean_and_basis) ||
+      trial.low_rank.basis_payload != c.model.basis_payload || trial.low_rank.coeffs != c.model.coeffs)
+    return fail(error_, "internal error: a screened low-rank model quantizes differently");
+  CodedResidual coded;
+  coded.prediction = low_rank_prediction(trial.low_rank, mean_and_basis, F_, n_);
+  if (!encode_with_prediction(&trial, &coded, frames_, rounded_, snap_, trial_plan, shared_, error_)) return false;
   ++rep_.trials;
   *bytes = write_container(trial, write_options_).size();
   if (*bytes < best_bytes_) {
     best_bytes_ = *bytes;
     best_model_ = std::move(trial);
+    best_coded_ = std::move(coded);
     rep_.components = c.model.components;
     rep_.basis_step = c.basis_step;
     rep_.rescued = from_rescue;
@@ -584,7 +601,7 @@ bool LowRankSearch::run_trials() {
   return true;
 }
 
-bool LowRankSearch::run(LowRankChoiceReport* report) {
+bool LowRankSearch::run(LowRankChoiceReport* report, CodedResidual* kept) {
   rep_.bytes_without = rep_.bytes = write_container(*model_, write_options_).size();
   if (report) *report = rep_;
   if (options_.components == 0) return true;
@@ -611,6 +628,7 @@ bool LowRankSearch::run(LowRankChoiceReport* report) {
   if (!run_trials()) return false;
   if (rep_.components > 0) {
     *model_ = std::move(best_model_);
+    if (kept) *kept = std::move(best_coded_);
     rep_.bytes = best_bytes_;
   }
   if (report) *report = rep_;
@@ -620,9 +638,10 @@ bool LowRankSearch::run(LowRankChoiceReport* report) {
 }  // namespace
 
 bool choose_low_rank(Model* model, const PlannedResidual& planned, const EncodeContext& context,
-                     const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error) {
+                     const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error,
+                     CodedResidual* kept) {
   LowRankSearch search(model, planned, context, options, error);
-  return search.run(report);
+  return search.run(report, kept);
 }
 
 // Screening plans each sampled frame once per candidate (a few dozen on the corpus), and

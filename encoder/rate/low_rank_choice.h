@@ -10,6 +10,7 @@
 #include "codec/common/predictors.h"
 #include "codec/common/residual.h"
 #include "codec/compress/container_writer.h"
+#include "encoder/rate/coded_residual.h"
 #include "encoder/rate/encode_context.h"
 
 namespace dcurve {
@@ -53,10 +54,13 @@ struct PlannedResidual {
 // `model` holds a finished encode of the context's frames without a low-rank model (residual
 // payload coded, no PDE motions), planned as `planned` says. Screens low-rank models by a
 // cheap estimate, encodes the residual with the promising ones and keeps the smallest whole
-// file in `model` (low_rank and residual.payload replaced). The result never depends on the
-// context's threads, weight tables or traversal. False only on an internal error.
+// file in `model` (low_rank and residual.payload replaced); when it keeps one, *kept (may be
+// null) receives what its payload codes, and is left alone otherwise. The result never
+// depends on the context's threads, weight tables or traversal. False only on an internal
+// error.
 bool choose_low_rank(Model* model, const PlannedResidual& planned, const EncodeContext& context,
-                     const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error);
+                     const LowRankChoiceOptions& options, LowRankChoiceReport* report, std::string* error,
+                     CodedResidual* kept = nullptr);
 
 // About how many frames choose_low_rank plans for F frames (screening plans and full
 // trials; the count depends on the input), for an encode's progress forecast.
