@@ -372,8 +372,12 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     fo.chunk_frames = opt.chunk_frames;
     fo.threads = opt.threads;
     const bool choose_model = opt.low_rank == -1 && !has_motion_model(m);
+    // A PDE model's prediction is its own evaluation; a low-rank model's comes from the values
+    // its basis codes.
+    const bool low_rank_coded = coded_valid && !coded.prediction.empty();
     if (choose_model ? !choose_fast_low_rank(&m, anim.frames, start.rounded, fo, error)
-                     : !encode_fast_layer(&m, anim.frames, fo, error) || !fast_low_rank_basis(&m, error))
+                     : !encode_fast_layer(&m, anim.frames, fo, error, low_rank_coded ? &coded.prediction : nullptr) ||
+                           !fast_low_rank_basis(&m, error, low_rank_coded ? &coded.basis.values : nullptr))
       return false;
   } else if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error, coded_valid ? &coded : nullptr)) {
     return false;

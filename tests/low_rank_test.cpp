@@ -11,6 +11,7 @@
 #include "codec/common/low_rank.h"
 #include "codec/common/validate.h"
 #include "codec/compress/container_writer.h"
+#include "codec/compress/residual_encoder.h"
 #include "codec/compress/range_encoder.h"
 #include "codec/decompress/container_reader.h"
 #include "codec/decompress/low_rank_reader.h"
@@ -205,9 +206,10 @@ TEST(LowRank, BasisValuesStayNearTheirAmplitudesAndTheMeanIsRounded) {
 }
 
 // The memo only saves work: counts up and down and steps interleaved, as the screening
-// calls them, give the model a call without it gives, byte for byte. The screening predicts
-// from the values quantize_low_rank returns instead of decoding its payload: with and
-// without the memo, they must be what a decoder decodes.
+// calls them, give the model a call without it gives, byte for byte. The rate control
+// predicts from the values quantize_low_rank returns and recodes the basis from its plan
+// instead of decoding the payload: with and without the memo, they must be what a decoder
+// decodes, recode to the same payload and predict every frame as the decoder does.
 TEST(LowRank, BasisMemoGivesTheSameModelAsCodingAfresh) {
   const SheetOnGrid sheet = sheet_on_grid();
   const std::vector<int32_t>& q = sheet.q;
@@ -217,9 +219,11 @@ TEST(LowRank, BasisMemoGivesTheSameModelAsCodingAfresh) {
   const std::pair<uint32_t, double> calls[] = {{2, 0.5}, {5, 0.5}, {1, 0.5}, {3, 2.0}, {6, 0.5}, {4, 2.0}, {3, 0.5}};
   for (const auto& [K, step] : calls) {
     Model fresh = sheet.model, memoized = sheet.model;
-    std::vector<int32_t> fresh_values, memoized_values;
-    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &fresh, &q, nullptr, nullptr, &fresh_values));
-    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &memoized, &q, &memo, nullptr, &memoized_values));
+    CodedPayload fresh_basis, memoized_basis;
+    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &fresh, &q, nullptr, nullptr, &fresh_basis));
+    ASSERT_TRUE(quantize_low_rank(pca, K, step, 1, 1, &memoized, &q, &memo, nullptr, &memoized_basis));
+    const std::vector<int32_t>& fresh_values = fresh_basis.values;
+    const std::vector<int32_t>& memoized_values = memoized_basis.values;
     EXPECT_EQ(memoized.low_rank.basis_payload, fresh.low_rank.basis_payload) << "K " << K << " step " << step;
     EXPECT_EQ(memoized.low_rank.coeffs, fresh.low_rank.coeffs) << "K " << K << " step " << step;
     EXPECT_EQ(memoized.low_rank.coeff_shifts, fresh.low_rank.coeff_shifts) << "K " << K << " step " << step;
@@ -227,6 +231,14 @@ TEST(LowRank, BasisMemoGivesTheSameModelAsCodingAfresh) {
     ASSERT_EQ(decoded.size(), (K + 1) * sheet.n);
     EXPECT_EQ(fresh_values, decoded) << "K " << K << " step " << step;
     EXPECT_EQ(memoized_values, decoded) << "K " << K << " step " << step;
+    EXPECT_EQ(encode_residuals(low_rank_basis_model(fresh), fresh_values, fresh_basis.plan, {}),
+              fresh.low_rank.basis_payload)
+        << "K " << K << " step " << step;
+    std::vector<int32_t> predicted;
+    std::string err;
+    ASSERT_TRUE(model_grid_prediction(fresh, UINT64_MAX, &predicted, &err)) << err;
+    EXPECT_EQ(low_rank_prediction(fresh.low_rank, fresh_values, fresh.meta.frame_count, sheet.n), predicted)
+        << "K " << K << " step " << step;
   }
   ASSERT_EQ(memo.entries.size(), 2u);  // one per step
   EXPECT_EQ(memo.entries[0].modes.size(), 6u);

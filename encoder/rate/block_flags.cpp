@@ -40,13 +40,16 @@ bool use_block_flags(Model* model, BlockFlagUse when, std::string* error, const 
   // recoding leaves as they are.
   if (model->low_rank.components > 0) {
     const Model basis = low_rank_basis_model(*model);
-    if (!decode_and_recode(basis, {}, when, &model->low_rank.basis_payload, error)) return false;
+    std::vector<uint8_t>* payload = &model->low_rank.basis_payload;
+    if (coded && !coded->basis.plan.chunks.empty() ? !recode(basis, coded->basis.values, coded->basis.plan, {}, when, payload, error)
+                                                   : !decode_and_recode(basis, {}, when, payload, error))
+      return false;
   }
   if (model->residual.payload.empty()) return true;
   if (coded) {
     ResidualOptions options;
     if (!coded->prediction.empty()) options.model_prediction = &coded->prediction;
-    return recode(*model, coded->values, coded->plan, options, when, &model->residual.payload, error);
+    return recode(*model, coded->resi.values, coded->resi.plan, options, when, &model->residual.payload, error);
   }
   // The prediction a decoder makes: from the PDE coefficients as the file stores them,
   // which differ from the in-memory ones in the last bits (a rounding that moved one grid

@@ -13,9 +13,9 @@ namespace dcurve {
 enum class BlockFlagUse { WhenSmaller, Always };
 
 // Recodes *model's residual payloads with block flags: the same plans and values, other
-// bytes. `coded` (may be null) is what the RESI payload codes, as the encoder left it; without
-// it, and for the LRNK basis, the payloads are decoded for their plans and values. Fails only
-// on a payload that does not decode (an internal error).
+// bytes. `coded` (may be null) is what the payloads code, as the encoder left them; without
+// it the payloads are decoded for their plans and values. Fails only on a payload that does
+// not decode (an internal error).
 bool use_block_flags(Model* model, BlockFlagUse when, std::string* error, const CodedResidual* coded = nullptr);
 
 }  // namespace dcurve

@@ -30,9 +30,9 @@ bool code_with_length(Model* trial, CodedResidual* coded, uint32_t K, const Enco
   trial->residual.chunk_frames = K;
   ResidualOptions ro = context.shared;
   ro.model_prediction = prediction;
-  coded->values = context.rounded;
-  coded->plan = choose_chunked_plan(*trial, context.frames, context.snap_distance, &coded->values, ro, plan);
-  trial->residual.payload = encode_residuals(*trial, coded->values, coded->plan, ro);
+  coded->resi.values = context.rounded;
+  coded->resi.plan = choose_chunked_plan(*trial, context.frames, context.snap_distance, &coded->resi.values, ro, plan);
+  trial->residual.payload = encode_residuals(*trial, coded->resi.values, coded->resi.plan, ro);
   if (trial->residual.payload.empty()) return fail(error, "internal error: the chunked residual plan is invalid");
   *file = write_container(*trial, context.write);
   return true;
@@ -48,7 +48,7 @@ bool choose_chunk_frames(Model* model, CodedResidual* coded, const EncodeContext
   const std::vector<int32_t>* predicted = coded->prediction.empty() ? nullptr : &coded->prediction;
   const std::vector<uint32_t> lengths = candidate_lengths(F);
   std::vector<Model> trials(lengths.size(), *model);
-  std::vector<CodedResidual> trials_coded(lengths.size());
+  std::vector<CodedResidual> trials_coded(lengths.size());  // RESI only
   std::vector<std::vector<uint8_t>> files(lengths.size());
   const uint32_t current = std::min(std::max(model->residual.chunk_frames, 1u), F);
   // The lengths are coded side by side, sharing the threads; each writes its own slot.
@@ -71,8 +71,7 @@ bool choose_chunk_frames(Model* model, CodedResidual* coded, const EncodeContext
     if (double(files[i].size()) <= double(smallest) * (1 + kChunkSlack)) {
       if (lengths[i] != current) {
         *model = std::move(trials[i]);
-        coded->plan = std::move(trials_coded[i].plan);
-        coded->values = std::move(trials_coded[i].values);
+        coded->resi = std::move(trials_coded[i].resi);
       }
       file->swap(files[i]);
       return true;

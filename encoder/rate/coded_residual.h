@@ -1,6 +1,6 @@
-// What the encoder knows of a residual payload it has just coded. Kept beside the Model, it
-// lets later steps (the chunk length, block flags) recode the layer without decoding the
-// payload to learn what the encoder computed.
+// What the encoder knows of the residual payloads it has just coded. Kept beside the Model,
+// it lets later steps (the chunk length, block flags, the fast basis) recode a layer without
+// decoding the payload to learn what the encoder computed.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -9,10 +9,17 @@
 
 namespace dcurve {
 
+// One payload of the residual coder: the plan it followed and the grid values it codes,
+// frame-major (for a low-rank basis: the mean, then the basis vectors).
+struct CodedPayload {
+  ResidualPlan plan;
+  std::vector<int32_t> values;
+};
+
 struct CodedResidual {
-  ResidualPlan plan;                // chunks, coding orders and predictors of the payload
-  std::vector<int32_t> values;      // the grid values it codes, frame-major
-  std::vector<int32_t> prediction;  // the Model predictor's values it subtracts; empty without
+  CodedPayload resi;                // the frames (RESI)
+  std::vector<int32_t> prediction;  // the Model predictor's values RESI subtracts; empty without
+  CodedPayload basis;               // the low-rank mean and basis (LRNK); empty without
 };
 
 }  // namespace dcurve

@@ -20,9 +20,10 @@ constexpr double kBasisStep = 0.25;
 constexpr uint32_t kCounts[] = {0, 2, 4, 6, 8, 12, 16, 24, 32, 48, 64};
 
 // The whole file's bytes with a fast layer coded over `trial` (its payload replaced).
+// prediction: the trial's Model prediction, null without a model.
 bool fast_file_bytes(Model* trial, const std::vector<std::vector<float>>& frames, const FastLayerOptions& options,
-                     size_t* bytes, std::string* error) {
-  if (!encode_fast_layer(trial, frames, options, error)) return false;
+                     const std::vector<int32_t>* prediction, size_t* bytes, std::string* error) {
+  if (!encode_fast_layer(trial, frames, options, error, prediction)) return false;
   WriteOptions wo;
   wo.connectivity = !trial->faces.empty();
   *bytes = write_container(*trial, wo).size();
@@ -30,14 +31,14 @@ bool fast_file_bytes(Model* trial, const std::vector<std::vector<float>>& frames
 }
 }  // namespace
 
-bool fast_low_rank_basis(Model* m, std::string* error) {
+bool fast_low_rank_basis(Model* m, std::string* error, const std::vector<int32_t>* values) {
   if (m->low_rank.components == 0) return true;
   const Model pseudo = low_rank_basis_model(*m);
-  std::vector<int32_t> values;
-  if (!decode_residuals(pseudo, &values, error)) return false;
+  std::vector<int32_t> decoded;
+  if (!values && !decode_residuals(pseudo, &decoded, error)) return false;
   const std::vector<uint8_t> kinds(pseudo.meta.frame_count, fast_residual::kSpatialFlag);  // None + spatial
   std::vector<uint8_t> payload =
-      encode_fast_residuals(pseudo, values, kinds, pseudo.meta.frame_count, nullptr);
+      encode_fast_residuals(pseudo, values ? *values : decoded, kinds, pseudo.meta.frame_count, nullptr);
   if (payload.empty()) return fail(error, "internal error: the low-rank basis does not code as a fast payload");
   m->low_rank.basis_payload = std::move(payload);
   return true;
@@ -57,11 +58,14 @@ bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frame
   for (uint32_t K : kCounts) {
     if (K > pca.weights.size() || worse >= 2) break;
     Model trial = base;
+    CodedPayload basis;
     if (K > 0 && !quantize_low_rank(pca, K, kBasisStep, 0, options.threads, &trial, &rounded, nullptr, nullptr,
-                                    nullptr, BasisCoding::Fast))
+                                    &basis, BasisCoding::Fast))
       break;
+    const std::vector<int32_t> prediction =
+        K > 0 ? low_rank_prediction(trial.low_rank, basis.values, F, n) : std::vector<int32_t>();
     size_t bytes = 0;
-    if (!fast_file_bytes(&trial, frames, options, &bytes, error)) return false;
+    if (!fast_file_bytes(&trial, frames, options, K > 0 ? &prediction : nullptr, &bytes, error)) return false;
     if (bytes < best_bytes) {
       best_bytes = bytes;
       best = std::move(trial);

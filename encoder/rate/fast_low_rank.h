@@ -20,7 +20,8 @@ bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frame
 
 // Recodes m's low-rank mean and basis (if any) as a fast payload, each pseudo-frame from
 // itself alone through the fast traversal, so a decoder opens the file without format 3's
-// spatial weight tables. The values are unchanged.
-bool fast_low_rank_basis(Model* m, std::string* error);
+// spatial weight tables. The values are unchanged: `values` (may be null), those its basis
+// payload codes, as the encoder kept them; else decoded from the payload.
+bool fast_low_rank_basis(Model* m, std::string* error, const std::vector<int32_t>* values = nullptr);
 
 }  // namespace dcurve

@@ -110,13 +110,13 @@ std::vector<uint32_t> fast_chunk_candidates(uint32_t F) {
 }
 
 bool encode_fast_layer(Model* m, const std::vector<std::vector<float>>& frames, const FastLayerOptions& options,
-                       std::string* error) {
+                       std::string* error, const std::vector<int32_t>* prediction) {
   std::vector<int32_t> model;
-  if (has_model_prediction(*m) && !model_grid_prediction(*m, UINT64_MAX, &model, error)) return false;
+  if (!prediction && has_model_prediction(*m) && !model_grid_prediction(*m, UINT64_MAX, &model, error)) return false;
   FastInputs in;
   in.layer = &m->residual;
   in.frames = &frames;
-  in.model = model.empty() ? nullptr : &model;
+  in.model = prediction ? prediction : model.empty() ? nullptr : &model;
   in.radius = options.snap_distance;
   in.V = m->meta.vertex_count;
   const FastTraversal traversal = fast_traversal(m->faces, in.V);

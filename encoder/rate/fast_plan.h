@@ -18,9 +18,11 @@ struct FastLayerOptions {
 };
 
 // Replaces m's residual payload (its grid step and origin kept, its Model prediction, LRNK
-// or PDE, used when it has one) by a fast payload of the input frames.
+// or PDE, used when it has one) by a fast payload of the input frames. prediction (may be
+// null): that Model prediction (frame-major grid values) when the caller has it, as an
+// encoder has from the values its basis payload codes; else computed from m.
 bool encode_fast_layer(Model* m, const std::vector<std::vector<float>>& frames, const FastLayerOptions& options,
-                       std::string* error);
+                       std::string* error, const std::vector<int32_t>* prediction = nullptr);
 
 // The chunk lengths the encoder considers for F frames: short enough that one frame costs at
 // most about a tenth of the clip to reach, and at least 4.

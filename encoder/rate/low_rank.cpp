@@ -89,10 +89,12 @@ void snap_basis_vector(const Traversal& t, const double* x_all, const int32_t* m
 // Basis values are snapped (snap_basis_vector) under each mode tried; `values` receives the
 // ones coded. `exact`: the K basis vectors' amplitudes in basis steps. memo (may be null):
 // the modes and values chosen for this mean and step by earlier calls, extended here.
-// traversal (may be null): build_traversal of the model's faces or curves.
+// traversal (may be null): build_traversal of the model's faces or curves. plan_out (may be
+// null) receives the plan coded.
 std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t>* values_io,
                                          const std::vector<double>& exact, uint32_t frames, int threads,
-                                         BasisMemo::Entry* memo, const Traversal* traversal) {
+                                         BasisMemo::Entry* memo, const Traversal* traversal,
+                                         PredictorPlan* plan_out = nullptr) {
   std::vector<int32_t>& values = *values_io;
   const size_t n = size_t(model.meta.vertex_count) * 3;
   Model pseudo;
@@ -160,7 +162,9 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t
   }
   pseudo.meta.frame_count = frames;
   PredictorPlan plan = plan_of(modes);
-  return encode_residuals(pseudo, values, &plan, options);
+  std::vector<uint8_t> payload = encode_residuals(pseudo, values, &plan, options);
+  if (plan_out) *plan_out = std::move(plan);
+  return payload;
 }
 
 // One basis vector's values (plane, V * 3) chosen from its exact amplitudes x (basis steps)
@@ -264,7 +268,7 @@ size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads
 
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
                        Model* model, const std::vector<int32_t>* q, BasisMemo* memo,
-                       const Traversal* traversal, std::vector<int32_t>* mean_and_basis, BasisCoding coding) {
+                       const Traversal* traversal, CodedPayload* basis, BasisCoding coding) {
   const uint32_t F = model->meta.frame_count;
   const size_t n = pca.mean.size();
   if (K == 0 || K > pca.weights.size() || K > kMaxLowRankComponents || !(basis_step > 0)) return false;
@@ -304,9 +308,10 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
       entry->mean_shift = mean_shift;
     }
   }
+  PredictorPlan plan;  // Range coding's
   lr.basis_payload = coding == BasisCoding::Fast
                          ? code_mean_and_basis_fast(*model, &values, exact, K + 1)
-                         : code_mean_and_basis(*model, &values, exact, K + 1, threads, entry, traversal);
+                         : code_mean_and_basis(*model, &values, exact, K + 1, threads, entry, traversal, &plan);
   if (lr.basis_payload.empty()) return false;
   std::vector<double> weights(size_t(F) * K);
   for (uint32_t f = 0; f < F; ++f)
@@ -321,7 +326,10 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
   lr.poses = pca.poses;
   std::copy(pca.pose_centre, pca.pose_centre + 3, lr.pose_centre);
   model->low_rank = std::move(lr);
-  if (mean_and_basis) *mean_and_basis = std::move(values);
+  if (basis) {
+    basis->plan = plan.frames.empty() ? ResidualPlan() : single_chunk_plan(plan);
+    basis->values = std::move(values);
+  }
   return true;
 }
 

@@ -6,6 +6,7 @@
 
 #include "codec/common/model.h"
 #include "codec/common/predictors.h"
+#include "encoder/rate/coded_residual.h"
 
 namespace dcurve {
 
@@ -67,15 +68,16 @@ struct BasisMemo {
 // poses the posed frames the components were taken from.
 // memo (may be null; the same pca and model on every call) makes the result no different,
 // only faster, and so does traversal (may be null: build_traversal(*model), when the caller
-// has it already). mean_and_basis (may be null) receives the values coded, mean then the K
-// basis vectors, n each: what a decoder decodes from the basis payload, for low_rank_frame.
+// has it already). basis (may be null) receives what the basis payload codes: the values,
+// mean then the K basis vectors, n each (what a decoder decodes, for low_rank_frame), and
+// with Range coding its plan (Fast: none).
 // False when a value would leave the format's ranges.
 // coding: the residual coder of format 3 (Range), or the fast payload of format 4 (Fast: each
 // pseudo-frame through the fast traversal, values snapped for it; memo and traversal unused).
 enum class BasisCoding { Range, Fast };
 bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step, uint32_t mean_shift, int threads,
                        Model* model, const std::vector<int32_t>* q = nullptr, BasisMemo* memo = nullptr,
-                       const Traversal* traversal = nullptr, std::vector<int32_t>* mean_and_basis = nullptr,
+                       const Traversal* traversal = nullptr, CodedPayload* basis = nullptr,
                        BasisCoding coding = BasisCoding::Range);
 
 // The Model predictor of frames 0 .. F - 1 (frame-major, n = V * 3 values each) from the

@@ -171,8 +171,8 @@ bool encode_with_prediction(Model* trial, CodedResidual* coded, const std::vecto
     if (!payloads[i].empty() && (best == orders || payloads[i].size() < payloads[best].size())) best = i;
   if (best == orders) return fail(error, "internal error: the low-rank residual plan is invalid");
   trial->residual.payload = std::move(payloads[best]);
-  coded->plan = std::move(plans[best]);
-  coded->values = std::move(values[best]);
+  coded->resi.plan = std::move(plans[best]);
+  coded->resi.values = std::move(values[best]);
   return true;
 }
 
@@ -195,7 +195,7 @@ class LowRankSearch {
  private:
   void build_anchors();
   void build_sample();
-  bool quantize(const GridComponents& pca, uint32_t K, double step, Model* trial, std::vector<int32_t>* mean_and_basis);
+  bool quantize(const GridComponents& pca, uint32_t K, double step, Model* trial, CodedPayload* basis);
   bool screen(const GridComponents& pca, uint32_t K, double step, bool* screened, std::vector<Candidate>* into);
   bool screen(const GridComponents& pca, uint32_t K, double step, bool* screened) {
     return screen(pca, K, step, screened, &candidates_);
@@ -298,13 +298,13 @@ void LowRankSearch::build_sample() {
 }
 
 // K components of `pca` at `step` into trial->low_rank, refitted to the frames they came
-// from; *mean_and_basis receives the values its basis payload codes. False when a value
+// from; *basis receives what its basis payload codes. False when a value
 // leaves the format's ranges.
 bool LowRankSearch::quantize(const GridComponents& pca, uint32_t K, double step, Model* trial,
-                             std::vector<int32_t>* mean_and_basis) {
+                             CodedPayload* basis) {
   const std::vector<int32_t>& refit = pca.poses.empty() ? rounded_ : poses_.aligned;
   return quantize_low_rank(pca, K, step, mean_shift_for(pca, step), threads_, trial, &refit,
-                           &memos_[size_t(&pca - pcas_.data())], shared_.traversal, mean_and_basis);
+                           &memos_[size_t(&pca - pcas_.data())], shared_.traversal, basis);
 }
 
 // Screens count K at `step` into `into`. A model whose section alone outweighs today's
@@ -313,15 +313,15 @@ bool LowRankSearch::screen(const GridComponents& pca, uint32_t K, double step, b
                            std::vector<Candidate>* into) {
   *screened = false;
   Model trial = *model_;
-  std::vector<int32_t> mean_and_basis;
-  if (!quantize(pca, K, step, &trial, &mean_and_basis)) return true;
+  CodedPayload basis;
+  if (!quantize(pca, K, step, &trial, &basis)) return true;
   const double section = double(low_rank_bytes(trial).size());
   if (!forced_ && section >= double(model_->residual.payload.size())) return true;
   // The sampled frames' predictions, from the values the basis payload codes.
   std::vector<int32_t> sampled(sample_.frames.size() * n_), q = sample_.rounded;
   std::vector<int64_t> sums(n_);
   for (size_t j = 0; j < sample_.frames.size(); ++j)
-    low_rank_frame(trial.low_rank, sample_.frames[j], mean_and_basis.data(), n_, sampled.data() + j * n_,
+    low_rank_frame(trial.low_rank, sample_.frames[j], basis.values.data(), n_, sampled.data() + j * n_,
                    sums.data());
   ResidualOptions ro = shared_;
   ro.model_prediction = &sampled;
@@ -540,12 +540,11 @@ bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* by
   // The candidate quantized again (as screened: the memo makes it quick) for the values its
   // basis payload codes, which give the Model prediction of every frame.
   Model trial = *model_;
-  std::vector<int32_t> mean_and_basis;
-  if (!quantize(*c.pca, c.model.components, c.basis_step, &trial, &mean_and_basis) ||
+  CodedResidual coded;
+  if (!quantize(*c.pca, c.model.components, c.basis_step, &trial, &coded.basis) ||
       trial.low_rank.basis_payload != c.model.basis_payload || trial.low_rank.coeffs != c.model.coeffs)
     return fail(error_, "internal error: a screened low-rank model quantizes differently");
-  CodedResidual coded;
-  coded.prediction = low_rank_prediction(trial.low_rank, mean_and_basis, F_, n_);
+  coded.prediction = low_rank_prediction(trial.low_rank, coded.basis.values, F_, n_);
   if (!encode_with_prediction(&trial, &coded, frames_, rounded_, snap_, trial_plan, shared_, error_)) return false;
   ++rep_.trials;
   *bytes = write_container(trial, write_options_).size();
