@@ -108,38 +108,46 @@ EncodeContext context_of(const Animation& anim, const EncodeOptions& opt, const 
   return c;
 }
 
-// The encode without a PDE model: the residual layer alone, with a low-rank model where it
-// pays; *coded receives what its payload codes. `residual_only` (may be null) receives it
-// before the low-rank choice: what a PDE motion competes with inside a file, which cannot
-// also carry a low-rank model. `bytes` (may be null) receives the whole file's size, as the
-// low-rank choice measured it.
-bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridStart& start, Model* m,
-                  CodedResidual* coded, Model* residual_only, std::string* error, uint64_t* bytes = nullptr) {
+// The encode without a PDE model (encode_plain): the file's model and what its payloads
+// code, and the same before the low-rank choice, the residual layer alone: what a PDE motion
+// competes with inside a file, which cannot also carry a low-rank model.
+struct PlainEncode {
+  Model model;
+  CodedResidual coded;
+  Model residual_only;
+  CodedPayload residual_only_coded;
+};
+
+// The residual layer alone, then a low-rank model where it pays, into *out. `bytes` (may be
+// null) receives the whole file's size, as the low-rank choice measured it.
+bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridStart& start, PlainEncode* out,
+                  std::string* error, uint64_t* bytes = nullptr) {
+  Model* m = &out->model;
   *m = start.model;
   const EncodeContext context = context_of(anim, opt, start);
   std::vector<int32_t> q = start.rounded;
   ResidualPlan plan = choose_chunked_plan(*m, anim.frames, start.snap, &q, context.shared, context.plan);
   m->residual.payload = encode_residuals(*m, q, plan, context.shared);
   if (m->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
-  if (residual_only) *residual_only = *m;
+  out->residual_only = *m;
+  out->residual_only_coded = {plan, q};
   LowRankChoiceOptions lro;
   // The fast profile chooses its own low-rank model (fast_low_rank.h) on the grid found here.
   lro.components = opt.profile == Profile::Fast && opt.low_rank == -1 ? 0 : opt.low_rank;
   lro.first_frame_anchor = opt.low_rank_first_frame;
   lro.posed_anchors = opt.low_rank_poses;
   LowRankChoiceReport rep;
-  if (!choose_low_rank(m, {plan, q}, context, lro, &rep, error, coded)) return false;
-  if (rep.components == 0) *coded = {std::move(plan), std::move(q), {}};
+  if (!choose_low_rank(m, {plan, q}, context, lro, &rep, error, &out->coded)) return false;
+  if (rep.components == 0) out->coded = {{std::move(plan), std::move(q)}, {}, {}};
   if (bytes) *bytes = rep.bytes;
   return true;
 }
 
 // The model every encode starts from: faces, curves, and the grid chosen by trial encodes
 // of encode_plain. When the trials coded the whole animation, the winning trial is the
-// plain encode itself: *plain, *coded and *residual_only (as encode_plain fills them) receive
-// it and *have_plain is set.
-bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, Model* plain, CodedResidual* coded,
-                 Model* residual_only, bool* have_plain, std::string* curve_fallback, std::string* error) {
+// plain encode itself: *plain receives it and *have_plain is set.
+bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, PlainEncode* plain, bool* have_plain,
+                 std::string* curve_fallback, std::string* error) {
   Model& m = out->model;
   const double L = bbox_diagonal(anim.frames[0]);
   m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), anim.frame_rate, opt.tolerance, L, ""};
@@ -169,8 +177,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
     m.residual.chunk_frames = chunk_frames;
     return quantize_to_grid(anim, m.residual, &out->rounded, error);
   }
-  std::vector<Model> trials(kGridTrialSlots), trials_residual_only(kGridTrialSlots);
-  std::vector<CodedResidual> trials_coded(kGridTrialSlots);
+  std::vector<PlainEncode> trials(kGridTrialSlots);
   const GridChoice choice =
       choose_grid(anim, opt.tolerance * L, opt.threads,
                   [&](const ResidualLayer& grid, const Animation& part, size_t slot, int threads) -> size_t {
@@ -187,8 +194,7 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
                     EncodeOptions o = plain_opt;
                     o.threads = threads;
                     uint64_t bytes = 0;
-                    if (!encode_plain(part, o, s, &trials[slot], &trials_coded[slot], &trials_residual_only[slot], nullptr,
-                                      &bytes))
+                    if (!encode_plain(part, o, s, &trials[slot], nullptr, &bytes))
                       return SIZE_MAX;
                     return size_t(bytes);
                   },
@@ -196,23 +202,21 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
   m.residual = choice.grid;
   m.residual.chunk_frames = chunk_frames;
   *have_plain = choice.whole;
-  if (choice.whole) {
-    *plain = std::move(trials[choice.slot]);
-    *coded = std::move(trials_coded[choice.slot]);
-    *residual_only = std::move(trials_residual_only[choice.slot]);
-  }
+  if (choice.whole) *plain = std::move(trials[choice.slot]);
   return quantize_to_grid(anim, m.residual, &out->rounded, error);
 }
 
 // The encode with the PDE motion model: fitted on every curve and segment with each allowed
 // basis set and segment length, the estimated best of them per motion (one segmentation
-// for the file), then only the motions that pay (encoder/rate/motion_*.h); `plain`, the
-// residual layer alone, is what they must beat.
-bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const GridStart& start, const Model& plain,
-                         Model* m, MotionChoiceReport* report, std::string* curve_fallback, std::string* error) {
+// for the file), then only the motions that pay (encoder/rate/motion_*.h), into *m and *coded;
+// plain.residual_only, the residual layer alone, is what they must beat.
+bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const GridStart& start,
+                         const PlainEncode& plain, Model* m, CodedResidual* coded, MotionChoiceReport* report,
+                         std::string* curve_fallback, std::string* error) {
+  const Model& alone = plain.residual_only;
   *m = start.model;
   // Without faces the plain encode has extracted the same curves already.
-  m->curves = opt.connectivity ? file_curves(anim, opt, curve_fallback) : plain.curves;
+  m->curves = opt.connectivity ? file_curves(anim, opt, curve_fallback) : alone.curves;
   std::vector<Basis> bases = {Basis::Pde8};
   if (opt.model == ModelChoice::Pde32) bases = {Basis::Pde32};
   if (opt.model == ModelChoice::Pde) bases.push_back(Basis::Pde32);
@@ -232,7 +236,9 @@ bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const 
       if (!fit_motion_model(anim, m->curves, anim.frames[0], mo, &fitted.back(), error)) return false;
     }
   MotionAlternativesReport estimate;
-  if (!choose_motion_alternative(*m, plain, fitted, start.rounded, &m->segments, &estimate, error)) return false;
+  if (!choose_motion_alternative(*m, alone, plain.residual_only_coded, fitted, start.rounded, &m->segments, &estimate,
+                                 error))
+    return false;
   if (!opt.keep_all_motions && estimate.promising == 0) {
     // No motion comes near paying: the residual plan that would confirm it is skipped.
     *report = MotionChoiceReport();
@@ -241,7 +247,7 @@ bool encode_with_motions(const Animation& anim, const EncodeOptions& opt, const 
   }
   MotionChoiceOptions mco;
   mco.keep_all = opt.keep_all_motions;
-  return choose_motions(m, plain, context_of(anim, opt, start), mco, report, error);
+  return choose_motions(m, alone, plain.residual_only_coded, context_of(anim, opt, start), mco, report, error, coded);
 }
 
 std::string format_number(double x) {
@@ -325,16 +331,15 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   WorkMeter meter(opt.progress);
   meter.forecast(forecast_stages(anim, opt));
   start.meter = &meter;
-  Model m, residual_only;
-  CodedResidual coded;  // what m's residual payload codes, while coded_valid
-  bool coded_valid = true;
+  PlainEncode plain;
+  Model& m = plain.model;
+  CodedResidual& coded = plain.coded;  // what m's payloads code
   bool have_plain = false;
-  if (!start_model(anim, opt, &start, &m, &coded, &residual_only, &have_plain, &rep.curve_fallback, error))
-    return false;
+  if (!start_model(anim, opt, &start, &plain, &have_plain, &rep.curve_fallback, error)) return false;
   meter.end_stage();  // the grid (kGridStage)
   // The file without a PDE model comes first: with --model none it is the file, otherwise
   // the motion model has to beat it, value by value and as a whole file.
-  if (!have_plain && !encode_plain(anim, opt, start, &m, &coded, &residual_only, error)) return false;
+  if (!have_plain && !encode_plain(anim, opt, start, &plain, error)) return false;
   meter.end_stage();
   WriteOptions wo;
   wo.connectivity = opt.connectivity;
@@ -349,16 +354,17 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   meter.end_stage();
   if (opt.model != ModelChoice::None) {
     Model pde;
+    CodedResidual pde_coded;
     MotionChoiceReport mrep;
     std::string curve_fallback = rep.curve_fallback;
-    if (!encode_with_motions(anim, opt, start, residual_only, &pde, &mrep, &curve_fallback, error)) return false;
+    if (!encode_with_motions(anim, opt, start, plain, &pde, &pde_coded, &mrep, &curve_fallback, error)) return false;
     rep.motions_fitted = mrep.fitted;
     if (mrep.kept > 0) {
       std::vector<uint8_t> with = write_container(pde, wo);
       if (opt.keep_all_motions || with.size() < out->size()) {
         out->swap(with);
         m = std::move(pde);
-        coded_valid = false;
+        coded = std::move(pde_coded);
         rep.motions_kept = mrep.kept;
         rep.curve_fallback = curve_fallback;
       }
@@ -372,14 +378,12 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
     fo.chunk_frames = opt.chunk_frames;
     fo.threads = opt.threads;
     const bool choose_model = opt.low_rank == -1 && !has_motion_model(m);
-    // A PDE model's prediction is its own evaluation; a low-rank model's comes from the values
-    // its basis codes.
-    const bool low_rank_coded = coded_valid && !coded.prediction.empty();
+    const std::vector<int32_t>* prediction = coded.prediction.empty() ? nullptr : &coded.prediction;
     if (choose_model ? !choose_fast_low_rank(&m, anim.frames, start.rounded, fo, error)
-                     : !encode_fast_layer(&m, anim.frames, fo, error, low_rank_coded ? &coded.prediction : nullptr) ||
-                           !fast_low_rank_basis(&m, error, low_rank_coded ? &coded.basis.values : nullptr))
+                     : !encode_fast_layer(&m, anim.frames, fo, error, prediction) ||
+                           !fast_low_rank_basis(&m, error, coded.basis.values.empty() ? nullptr : &coded.basis.values))
       return false;
-  } else if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error, coded_valid ? &coded : nullptr)) {
+  } else if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error, &coded)) {
     return false;
   }
   if (!choose_inbetween(&m, anim.frames, opt.inbetween, error)) return false;

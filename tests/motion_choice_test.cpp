@@ -33,6 +33,7 @@ struct Synthetic {
   std::vector<std::vector<float>> frames;
   std::vector<int32_t> rounded;
   Model plain;  // the same frames coded without a motion model
+  CodedPayload plain_coded;  // what its payload codes
 };
 
 Synthetic make_synthetic(int threads) {
@@ -88,6 +89,7 @@ Synthetic make_synthetic(int threads) {
   po.threads = threads;
   const PredictorPlan plan = choose_plan_and_grid(s.plain, s.frames, 0.5 * kStep, &q, {}, po);
   s.plain.residual.payload = encode_residuals(s.plain, q, &plan);
+  s.plain_coded = {single_chunk_plan(plan), q};
   return s;
 }
 
@@ -104,7 +106,7 @@ bool run_choice(Synthetic* s, int threads, MotionChoiceReport* rep) {
   context.snap_distance = 0.5 * kStep;
   context.plan.threads = threads;
   std::string err;
-  const bool ok = choose_motions(&s->model, s->plain, context, {}, rep, &err);
+  const bool ok = choose_motions(&s->model, s->plain, s->plain_coded, context, {}, rep, &err);
   EXPECT_TRUE(ok) << err;
   return ok;
 }
@@ -180,7 +182,7 @@ TEST(MotionChoice, AlternativesMixTheBestMotionOfEachSlot) {
   std::vector<Segment> chosen;
   MotionAlternativesReport rep;
   std::string err;
-  ASSERT_TRUE(choose_motion_alternative(s.model, s.plain, fitted, s.rounded, &chosen, &rep, &err)) << err;
+  ASSERT_TRUE(choose_motion_alternative(s.model, s.plain, s.plain_coded, fitted, s.rounded, &chosen, &rep, &err)) << err;
   EXPECT_EQ(rep.segmentation, 1u);
   EXPECT_LT(rep.estimated_bytes, rep.baseline_bytes);
   EXPECT_EQ(rep.motions, kStrips * 3);

@@ -94,12 +94,12 @@ bool same_bounds(const std::vector<Segment>& a, const std::vector<Segment>& b) {
 
 }  // namespace
 
-bool choose_motion_alternative(const Model& model, const Model& baseline,
+bool choose_motion_alternative(const Model& model, const Model& baseline, const CodedPayload& baseline_coded,
                                const std::vector<std::vector<Segment>>& fitted, const std::vector<int32_t>& rounded,
                                std::vector<Segment>* chosen, MotionAlternativesReport* report, std::string* error) {
   if (fitted.empty()) return fail(error, "internal error: no fitted motion model to choose from");
   ValueCosts costs;
-  if (!coded_value_costs(baseline, &costs, error)) return false;
+  if (!coded_value_costs(baseline, baseline_coded, &costs, error)) return false;
   if (costs.bits.size() != rounded.size()) return fail(error, "internal error: the baseline encode is on another grid");
   const Traversal trav = build_traversal(model);
   std::vector<uint32_t> position(model.meta.vertex_count);

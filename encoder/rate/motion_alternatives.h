@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "codec/common/model.h"
+#include "encoder/rate/coded_residual.h"
 
 namespace dcurve {
 
@@ -25,15 +26,15 @@ struct MotionAlternativesReport {
 // fit_motion_model; lists with identical segment bounds form one segmentation) and writes
 // the chosen segments to `chosen`.
 //   model: curves, faces and grid (its segments are ignored).
-//   baseline: the finished encode without a PDE model on the same grid; its per-value
-//     residual bits are what a motion must beat.
+//   baseline: the finished encode without a PDE model on the same grid, coding
+//     baseline_coded; its per-value residual bits are what a motion must beat.
 //   rounded: grid values of the input frames (frame-major).
 // A motion's estimate is its SEGS bytes plus the residual bytes of its values under the
 // Model predictor alone (per frame the cheaper of no spatial correction and the mean of the
 // earlier neighbours' errors), priced with the baseline's residual statistics; a
 // segmentation's estimate sums, over its motion slots, the cheaper of the best basis's
 // estimate and the baseline's bytes. The smallest wins, the earliest on ties. Deterministic.
-bool choose_motion_alternative(const Model& model, const Model& baseline,
+bool choose_motion_alternative(const Model& model, const Model& baseline, const CodedPayload& baseline_coded,
                                const std::vector<std::vector<Segment>>& fitted, const std::vector<int32_t>& rounded,
                                std::vector<Segment>* chosen, MotionAlternativesReport* report, std::string* error);
 

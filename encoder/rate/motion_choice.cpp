@@ -35,8 +35,9 @@ uint32_t count_motions(const Model& model) {
 
 }  // namespace
 
-bool choose_motions(Model* model, const Model& baseline, const EncodeContext& context,
-                    const MotionChoiceOptions& options, MotionChoiceReport* report, std::string* error) {
+bool choose_motions(Model* model, const Model& baseline, const CodedPayload& baseline_coded, const EncodeContext& context,
+                    const MotionChoiceOptions& options, MotionChoiceReport* report, std::string* error,
+                    CodedResidual* coded) {
   MotionChoiceReport rep;
   rep.fitted = count_motions(*model);
   ValueCosts without;
@@ -45,7 +46,7 @@ bool choose_motions(Model* model, const Model& baseline, const EncodeContext& co
     if (baseline.residual.step != model->residual.step || baseline.meta.frame_count != model->meta.frame_count ||
         baseline.meta.vertex_count != model->meta.vertex_count)
       return fail(error, "internal error: the baseline encode is on another grid");
-    if (!coded_value_costs(baseline, &without, error)) return false;
+    if (!coded_value_costs(baseline, baseline_coded, &without, error)) return false;
     compression = segs_compression(*model);
   }
   for (;;) {
@@ -54,8 +55,7 @@ bool choose_motions(Model* model, const Model& baseline, const EncodeContext& co
     if (prediction.empty()) break;  // nothing left to plan with: the baseline stands
     ResidualOptions ro;
     ro.model_prediction = &prediction;
-    const ResidualPlan plan =
-        choose_chunked_plan(*model, context.frames, context.snap_distance, &q, ro, context.plan);
+    ResidualPlan plan = choose_chunked_plan(*model, context.frames, context.snap_distance, &q, ro, context.plan);
     ++rep.plans;
     bool dropped = false;
     if (!options.keep_all && rep.plans <= options.max_screens) {
@@ -81,6 +81,7 @@ bool choose_motions(Model* model, const Model& baseline, const EncodeContext& co
     if (dropped) continue;
     model->residual.payload = encode_residuals(*model, q, plan, ro);
     if (model->residual.payload.empty()) return fail(error, "internal error: the residual plan is invalid");
+    if (coded) *coded = {{std::move(plan), std::move(q)}, std::move(prediction), {}};
     break;
   }
   rep.kept = count_motions(*model);

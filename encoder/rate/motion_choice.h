@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "codec/common/model.h"
+#include "encoder/rate/coded_residual.h"
 #include "codec/common/residual.h"
 #include "encoder/rate/encode_context.h"
 
@@ -35,12 +36,14 @@ struct MotionChoiceReport {
 //     is replaced. When no motion pays, every motion becomes Zero and the payload is left
 //     empty: the caller keeps `baseline`.
 //   baseline: the finished encode of the same frames on the same grid without a PDE model
-//     (it may carry a low-rank model): the residual bits each value costs there are what a
-//     motion has to beat.
+//     or a low-rank model, coding baseline_coded: the residual bits each value costs there
+//     are what a motion has to beat.
 //   context: the frames, their grid values and how to plan (its shared tables unused: the
 //     model's own traversal is walked).
+// coded (may be null): receives what the payload codes, when one is coded.
 // Deterministic for any context.plan.threads. False only on an internal error.
-bool choose_motions(Model* model, const Model& baseline, const EncodeContext& context,
-                    const MotionChoiceOptions& options, MotionChoiceReport* report, std::string* error);
+bool choose_motions(Model* model, const Model& baseline, const CodedPayload& baseline_coded, const EncodeContext& context,
+                    const MotionChoiceOptions& options, MotionChoiceReport* report, std::string* error,
+                    CodedResidual* coded = nullptr);
 
 }  // namespace dcurve

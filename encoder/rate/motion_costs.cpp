@@ -5,11 +5,10 @@
 
 #include "codec/common/error.h"
 #include "codec/compress/container_writer.h"
+#include "codec/compress/quantize.h"
 #include "codec/compress/residual_encoder.h"
 #include "codec/compress/residual_values.h"
-#include "codec/decompress/container_reader.h"
 #include "codec/decompress/model_prediction.h"
-#include "codec/decompress/residual_decoder.h"
 #include "encoder/rate/plan_steps.h"
 
 namespace dcurve {
@@ -79,16 +78,9 @@ double segs_compression(const Model& model) {
   return 1;
 }
 
-bool coded_value_costs(const Model& baseline, ValueCosts* out, std::string* error) {
-  std::vector<int32_t> prediction, q;
-  ResidualOptions ro;
-  if (has_model_prediction(baseline)) {
-    if (!model_grid_prediction(baseline, UINT64_MAX, &prediction, error)) return false;
-    ro.model_prediction = &prediction;
-  }
-  ResidualPlan plan;
-  if (!decode_residuals(baseline, &q, error, ro, &plan)) return false;
-  return value_costs(baseline, q, plan, ro, out, error);
+bool coded_value_costs(const Model& baseline, const CodedPayload& coded, ValueCosts* out, std::string* error) {
+  if (has_model_prediction(baseline)) return fail(error, "internal error: the baseline encode has a Model prediction");
+  return value_costs(baseline, coded.values, coded.plan, {}, out, error);
 }
 
 std::pair<uint32_t, uint32_t> predicted_frames(const Model& model, size_t s) {
@@ -100,9 +92,8 @@ std::pair<uint32_t, uint32_t> predicted_frames(const Model& model, size_t s) {
 bool stored_model_prediction(const Model& model, std::vector<int32_t>* prediction, std::string* error) {
   prediction->clear();
   if (!has_model_prediction(model)) return true;
-  const std::vector<uint8_t> bytes = written(model);
-  Model stored;
-  if (!read_container(bytes.data(), bytes.size(), &stored, error)) return false;
+  Model stored = model;
+  for (float& u : stored.curves.u) u = quantize_curve_u(u);
   return model_grid_prediction(stored, UINT64_MAX, prediction, error);
 }
 

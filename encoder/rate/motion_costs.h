@@ -9,6 +9,7 @@
 
 #include "codec/common/model.h"
 #include "codec/common/residual.h"
+#include "encoder/rate/coded_residual.h"
 
 namespace dcurve {
 
@@ -28,9 +29,9 @@ struct ValueCosts {
 bool value_costs(const Model& model, const std::vector<int32_t>& q, const ResidualPlan& plan,
                  const ResidualOptions& ro, ValueCosts* out, std::string* error);
 
-// The same for the residual payload `model` already carries (its low-rank prediction, if
-// any, included).
-bool coded_value_costs(const Model& model, ValueCosts* out, std::string* error);
+// The same for the residual payload `baseline` carries (without a Model prediction), from
+// what it codes as the encoder kept it.
+bool coded_value_costs(const Model& baseline, const CodedPayload& coded, ValueCosts* out, std::string* error);
 
 // Bytes the SEGS section stores for motion `m` beyond a Zero motion's single byte, before zstd.
 double motion_record_bytes(const CurveMotion& m);
@@ -43,9 +44,10 @@ double segs_compression(const Model& model);
 // shared with the next segment belongs to the next one, as in the decoder.
 std::pair<uint32_t, uint32_t> predicted_frames(const Model& model, size_t s);
 
-// The Model predictor of every frame from `model` as the file stores it (written and read
-// back: the in-memory coefficients differ in the last bits), grid units; empty when the
-// model has no Model prediction.
+// The Model predictor of every frame from `model` as a reader of its file gets it back: the
+// curves' u in 16-bit fixed point as the container stores them (the in-memory u differ in
+// the last bits; coefficients are stored exactly), grid units; empty when the model has no
+// Model prediction.
 bool stored_model_prediction(const Model& model, std::vector<int32_t>* prediction, std::string* error);
 
 }  // namespace dcurve
