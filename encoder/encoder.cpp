@@ -284,10 +284,15 @@ std::vector<uint64_t> forecast_stages(const Animation& anim, const EncodeOptions
   const uint64_t trial_frames = grid_trial_frames(uint32_t(F), anim.vertex_count);
   if (trials) stages[kGridStage] = (opt.effort == kMaxEffort ? kWalkTrials : 2) * plain(trial_frames);
   if (!trials || trial_frames < F) stages[kPlainStage] = plain(F);
+  // The chunk choice plans each length at --effort 3; otherwise it cuts the kept plan and
+  // plans only a length that wins, which a clip too long to be one chunk always has.
   const bool chunk_choice = opt.chunk_frames == 0 && !(fast && opt.model == ModelChoice::None);
-  if (chunk_choice)
+  if (chunk_choice && opt.effort == kMaxEffort) {
     for (uint32_t K : kChunkCandidates)
       if (K < F) stages[kChunkStage] += residual_plan_frames(F);
+  } else if (chunk_choice && F > kMaxWholeClipFrames) {
+    stages[kChunkStage] = residual_plan_frames(F);
+  }
   if (opt.model != ModelChoice::None) stages[kMotionStage] = residual_plan_frames(F);
   // The fast layer (its own chunk lengths and low-rank models, about a plan's time) or block
   // flags, the in-between rule, the file written and decoded: not counted in frames, so
@@ -347,7 +352,8 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   // model's comparison below needs format 3's chosen file.
   const bool fast_alone = opt.profile == Profile::Fast && opt.model == ModelChoice::None;
   if (opt.chunk_frames == 0 && !fast_alone) {
-    if (!choose_chunk_frames(&m, &coded, context_of(anim, opt, start), out, error)) return false;
+    const ChunkTrial trial = opt.effort == kMaxEffort ? ChunkTrial::Replan : ChunkTrial::Cut;
+    if (!choose_chunk_frames(&m, &coded, context_of(anim, opt, start), trial, out, error)) return false;
   } else {
     *out = write_container(m, wo);
   }
