@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iterator>
 #include <memory>
+#include <optional>
 
 #include "codec/common/error.h"
 #include "codec/common/model.h"
@@ -116,15 +117,25 @@ struct PlainEncode {
   CodedResidual coded;
   Model residual_only;
   CodedPayload residual_only_coded;
+  LowRankPick low_rank;  // the low-rank model kept, none when components is 0
+};
+
+// What a grid trial of part of the clip chose, for the whole clip's plain encode to follow
+// instead of searching again: the coding order and cluster layout, the low-rank model.
+struct TrialChoices {
+  PredictorPlan plan;  // the trial's plan, for narrow_to_plan
+  LowRankPick low_rank;
 };
 
 // The residual layer alone, then a low-rank model where it pays, into *out. `bytes` (may be
 // null) receives the whole file's size, as the low-rank choice measured it.
+// follow (may be null): what a grid trial chose, planned and tried instead of the searches.
 bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridStart& start, PlainEncode* out,
-                  std::string* error, uint64_t* bytes = nullptr) {
+                  std::string* error, uint64_t* bytes = nullptr, const TrialChoices* follow = nullptr) {
   Model* m = &out->model;
   *m = start.model;
-  const EncodeContext context = context_of(anim, opt, start);
+  EncodeContext context = context_of(anim, opt, start);
+  if (follow) context.plan = narrow_to_plan(context.plan, follow->plan);
   std::vector<int32_t> q = start.rounded;
   ResidualPlan plan = choose_chunked_plan(*m, anim.frames, start.snap, &q, context.shared, context.plan);
   m->residual.payload = encode_residuals(*m, q, plan, context.shared);
@@ -136,8 +147,11 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   lro.components = opt.profile == Profile::Fast && opt.low_rank == -1 ? 0 : opt.low_rank;
   lro.first_frame_anchor = opt.low_rank_first_frame;
   lro.posed_anchors = opt.low_rank_poses;
+  // A part without a model says little of the whole clip, whose drift a component may carry.
+  if (follow && lro.components == -1 && follow->low_rank.components > 0) lro.follow = &follow->low_rank;
   LowRankChoiceReport rep;
   if (!choose_low_rank(m, {plan, q}, context, lro, &rep, error, &out->coded)) return false;
+  out->low_rank = rep.kept;
   if (rep.components == 0) out->coded = {{std::move(plan), std::move(q)}, {}, {}};
   if (bytes) *bytes = rep.bytes;
   return true;
@@ -145,9 +159,10 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
 
 // The model every encode starts from: faces, curves, and the grid chosen by trial encodes
 // of encode_plain. When the trials coded the whole animation, the winning trial is the
-// plain encode itself: *plain receives it and *have_plain is set.
+// plain encode itself: *plain receives it and *have_plain is set. When they coded part of
+// it, below --effort 3, *follow receives what the winning trial chose.
 bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, PlainEncode* plain, bool* have_plain,
-                 std::string* curve_fallback, std::string* error) {
+                 std::optional<TrialChoices>* follow, std::string* curve_fallback, std::string* error) {
   Model& m = out->model;
   const double L = bbox_diagonal(anim.frames[0]);
   m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), anim.frame_rate, opt.tolerance, L, ""};
@@ -203,6 +218,11 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
   m.residual.chunk_frames = chunk_frames;
   *have_plain = choice.whole;
   if (choice.whole) *plain = std::move(trials[choice.slot]);
+  // The search over part of the clip chose for the whole: planning every order, layout and
+  // low-rank candidate again for the whole clip took most of a long clip's encode.
+  const PlainEncode& won = trials[choice.slot];
+  if (!choice.whole && opt.effort != kMaxEffort && !won.residual_only_coded.plan.chunks.empty())
+    *follow = TrialChoices{won.residual_only_coded.plan.chunks[0], won.low_rank};
   return quantize_to_grid(anim, m.residual, &out->rounded, error);
 }
 
@@ -283,7 +303,10 @@ std::vector<uint64_t> forecast_stages(const Animation& anim, const EncodeOptions
   const bool trials = opt.grid_refinement == 0 && opt.effort != kMinEffort;
   const uint64_t trial_frames = grid_trial_frames(uint32_t(F), anim.vertex_count);
   if (trials) stages[kGridStage] = (opt.effort == kMaxEffort ? kWalkTrials : 2) * plain(trial_frames);
-  if (!trials || trial_frames < F) stages[kPlainStage] = plain(F);
+  // After trials of part of the clip, the whole clip's plan follows the winner (start_model):
+  // one order and at most one layout, then one low-rank trial of two orders and layouts.
+  if (!trials) stages[kPlainStage] = plain(F);
+  else if (trial_frames < F) stages[kPlainStage] = opt.effort == kMaxEffort ? plain(F) : (low_rank ? 6 : 2) * F;
   // The chunk choice plans each length at --effort 3; otherwise it cuts the kept plan and
   // plans only a length that wins, which a clip too long to be one chunk always has.
   const bool chunk_choice = opt.chunk_frames == 0 && !(fast && opt.model == ModelChoice::None);
@@ -340,11 +363,12 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   Model& m = plain.model;
   CodedResidual& coded = plain.coded;  // what m's payloads code
   bool have_plain = false;
-  if (!start_model(anim, opt, &start, &plain, &have_plain, &rep.curve_fallback, error)) return false;
+  std::optional<TrialChoices> follow;
+  if (!start_model(anim, opt, &start, &plain, &have_plain, &follow, &rep.curve_fallback, error)) return false;
   meter.end_stage();  // the grid (kGridStage)
   // The file without a PDE model comes first: with --model none it is the file, otherwise
   // the motion model has to beat it, value by value and as a whole file.
-  if (!have_plain && !encode_plain(anim, opt, start, &plain, error)) return false;
+  if (!have_plain && !encode_plain(anim, opt, start, &plain, error, nullptr, follow ? &*follow : nullptr)) return false;
   meter.end_stage();
   WriteOptions wo;
   wo.connectivity = opt.connectivity;

@@ -98,5 +98,33 @@ TEST(LowRankChoice, ACountTheFirstBasisStepCutOffGetsATrial) {
   EXPECT_LE(test::decoded_max_error(bytes, anim), 1e-3);
 }
 
+// Following the model a search kept (as an encode of the whole clip follows a trial of its
+// middle) screens nothing and keeps the same file; a pick with no model keeps the plain file.
+TEST(LowRankChoice, FollowingTheKeptModelGivesTheSameFileWithoutScreening) {
+  const Animation anim = rough_modes(12, 9, 14, 12, 0.01, 5);
+  const PlainEncode p = plain_encode(anim, 1e-3);
+  EncodeContext context(anim.frames, p.rounded);
+  context.snap_distance = p.snap;
+  std::string err;
+  LowRankChoiceReport searched, followed, none;
+  Model by_search = p.model, by_follow = p.model, without = p.model;
+  ASSERT_TRUE(choose_low_rank(&by_search, {p.plan, p.coded}, context, {}, &searched, &err)) << err;
+  ASSERT_GT(searched.components, 0u);
+  EXPECT_EQ(searched.kept.components, searched.components);
+  LowRankChoiceOptions follow;
+  follow.follow = &searched.kept;
+  ASSERT_TRUE(choose_low_rank(&by_follow, {p.plan, p.coded}, context, follow, &followed, &err)) << err;
+  EXPECT_EQ(followed.screened, 0u);
+  EXPECT_EQ(followed.trials, 1u);
+  EXPECT_EQ(followed.bytes, searched.bytes);
+  EXPECT_EQ(write_container(by_follow, {}), write_container(by_search, {}));
+  const LowRankPick no_model;
+  follow.follow = &no_model;
+  ASSERT_TRUE(choose_low_rank(&without, {p.plan, p.coded}, context, follow, &none, &err)) << err;
+  EXPECT_EQ(none.components, 0u);
+  EXPECT_EQ(none.bytes, none.bytes_without);
+  EXPECT_EQ(write_container(without, {}), write_container(p.model, {}));
+}
+
 }  // namespace
 }  // namespace dcurve

@@ -193,8 +193,11 @@ class LowRankSearch {
   bool run(LowRankChoiceReport* report, CodedResidual* kept);
 
  private:
+  void add_anchor(uint32_t anchor, bool posed);
   void build_anchors();
   void build_sample();
+  bool search();
+  bool follow(const LowRankPick& pick);
   bool quantize(const GridComponents& pca, uint32_t K, double step, Model* trial, CodedPayload* basis);
   bool screen(const GridComponents& pca, uint32_t K, double step, bool* screened, std::vector<Candidate>* into);
   bool screen(const GridComponents& pca, uint32_t K, double step, bool* screened) {
@@ -245,6 +248,16 @@ class LowRankSearch {
   CodedResidual best_coded_;  // what best_model_'s payload codes
 };
 
+// One anchor's components: of the rounded frames, or (posed) of the frames carried into frame
+// 0's pose, which poses_ must hold.
+void LowRankSearch::add_anchor(uint32_t anchor, bool posed) {
+  const uint32_t max_components = std::min<uint32_t>(kMaxLowRankComponents, F_ - 1);
+  pcas_.push_back(grid_components(posed ? poses_.aligned : rounded_, F_, n_, max_components, anchor));
+  if (!posed) return;
+  pcas_.back().poses = poses_.poses;
+  std::copy(poses_.centre, poses_.centre + 3, pcas_.back().pose_centre);
+}
+
 // Two anchors, each screened over every count: the frame average, the classic centre, and
 // the first frame, often the cleanest shape of an animation (a rest pose, modelled or
 // generated, whose regular mesh codes in far fewer bytes than the average's blur of poses),
@@ -254,24 +267,19 @@ class LowRankSearch {
 // the modelled mesh is no cleaner than the average, screening it would multiply the encode
 // time for nothing. Each anchor again in frame 0's pose, for bodies that turn.
 void LowRankSearch::build_anchors() {
-  const uint32_t max_components = std::min<uint32_t>(kMaxLowRankComponents, F_ - 1);
-  pcas_.push_back(grid_components(rounded_, F_, n_, max_components, kMeanAnchor));
+  add_anchor(kMeanAnchor, false);
   if (options_.first_frame_anchor && !pcas_[0].mean.empty()) {
     std::vector<int32_t> average(n_);
     for (size_t i = 0; i < n_; ++i) average[i] = int32_t(std::lround(pcas_[0].mean[i]));
     const std::vector<int32_t> first(rounded_.begin(), rounded_.begin() + std::ptrdiff_t(n_));
     if (anchor_bytes(*model_, first, threads_, shared_.traversal) <
         anchor_bytes(*model_, average, threads_, shared_.traversal))
-      pcas_.push_back(grid_components(rounded_, F_, n_, max_components, 0));
+      add_anchor(0, false);
   }
   posed_from_ = pcas_.size();
   if (options_.posed_anchors && !forced_ && estimate_frame_poses(rounded_, F_, n_, &poses_) &&
       poses_.max_angle >= kMinPoseAngle) {
-    for (size_t i = 0; i < posed_from_; ++i) {
-      pcas_.push_back(grid_components(poses_.aligned, F_, n_, max_components, pcas_[i].anchor));
-      pcas_.back().poses = poses_.poses;
-      std::copy(poses_.centre, poses_.centre + 3, pcas_.back().pose_centre);
-    }
+    for (size_t i = 0; i < posed_from_; ++i) add_anchor(pcas_[i].anchor, true);
   }
   memos_.resize(pcas_.size());
 }
@@ -554,6 +562,7 @@ bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* by
     best_coded_ = std::move(coded);
     rep_.components = c.model.components;
     rep_.basis_step = c.basis_step;
+    rep_.kept = {c.model.components, c.pca->anchor, !c.pca->poses.empty(), c.basis_step};
     rep_.rescued = from_rescue;
   }
   return true;
@@ -600,6 +609,42 @@ bool LowRankSearch::run_trials() {
   return true;
 }
 
+// The screening of every anchor, then the full trials of the promising candidates.
+bool LowRankSearch::search() {
+  bits_without_ = frame_bits(*model_, planned_.values, planned_.plan, shared_);
+  build_anchors();
+  build_sample();
+  for (size_t i = 0; i < pcas_.size(); ++i) {
+    if (!pcas_[i].poses.empty()) {
+      bool beats = false;
+      if (!posed_beats_twin(i, &beats)) return false;
+      if (!beats) continue;
+    }
+    if (!screen_anchor(pcas_[i])) return false;
+  }
+  return run_trials();
+}
+
+// The one full trial of `pick`, unless this clip cannot have it (its frames do not turn for
+// a posed anchor, or give fewer components).
+bool LowRankSearch::follow(const LowRankPick& pick) {
+  if (pick.components == 0) return true;
+  if (pick.posed && !estimate_frame_poses(rounded_, F_, n_, &poses_)) return true;
+  add_anchor(pick.anchor, pick.posed);
+  memos_.resize(1);
+  if (pick.components > pcas_[0].weights.size()) return true;
+  Model trial = *model_;
+  CodedPayload basis;
+  if (!quantize(pcas_[0], pick.components, pick.basis_step, &trial, &basis)) return true;
+  Candidate c;
+  c.model = std::move(trial.low_rank);
+  c.pca = &pcas_[0];
+  c.basis_step = pick.basis_step;
+  best_bytes_ = rep_.bytes_without;
+  uint64_t bytes = 0;
+  return run_trial(c, false, &bytes);
+}
+
 bool LowRankSearch::run(LowRankChoiceReport* report, CodedResidual* kept) {
   rep_.bytes_without = rep_.bytes = write_container(*model_, write_options_).size();
   if (report) *report = rep_;
@@ -613,18 +658,7 @@ bool LowRankSearch::run(LowRankChoiceReport* report, CodedResidual* kept) {
   if (!forced_ && (F_ < 3 || double(F_) * F_ * double(n_) > kMaxGramWork)) return true;
   shared_.model_prediction = nullptr;
   shared_.traversal = &traversal_for(*model_, shared_, &owned_traversal_);
-  bits_without_ = frame_bits(*model_, planned_.values, planned_.plan, shared_);
-  build_anchors();
-  build_sample();
-  for (size_t i = 0; i < pcas_.size(); ++i) {
-    if (!pcas_[i].poses.empty()) {
-      bool beats = false;
-      if (!posed_beats_twin(i, &beats)) return false;
-      if (!beats) continue;
-    }
-    if (!screen_anchor(pcas_[i])) return false;
-  }
-  if (!run_trials()) return false;
+  if (!(options_.follow ? follow(*options_.follow) : search())) return false;
   if (rep_.components > 0) {
     *model_ = std::move(best_model_);
     if (kept) *kept = std::move(best_coded_);

@@ -12,8 +12,18 @@
 #include "codec/compress/container_writer.h"
 #include "encoder/rate/coded_residual.h"
 #include "encoder/rate/encode_context.h"
+#include "encoder/rate/low_rank.h"
 
 namespace dcurve {
+
+// A low-rank model as a choice made elsewhere (by an encode of part of the clip): which
+// anchor, how many components, how coarse.
+struct LowRankPick {
+  uint32_t components = 0;          // 0: no model
+  uint32_t anchor = kMeanAnchor;    // GridComponents::anchor: the frame average or a frame
+  bool posed = false;               // the anchor carried into a common pose
+  double basis_step = 0;            // grid units
+};
 
 struct LowRankChoiceOptions {
   // -1: automatic (kept only when the file gets smaller); 0: never; K in 1..64: always use K
@@ -33,11 +43,15 @@ struct LowRankChoiceOptions {
   // step at coarser steps (upwards, while each saves at least half its section), and give
   // the best of them a trial of its own.
   bool rescue_cut_counts = true;
+  // When set (components must stay -1): no screening; only this model gets a full trial,
+  // kept when the whole file gets smaller.
+  const LowRankPick* follow = nullptr;
 };
 
 struct LowRankChoiceReport {
   uint32_t components = 0;       // K of the model kept, 0 when none
   double basis_step = 0;         // grid units
+  LowRankPick kept;              // the model kept, as a choice another encode can follow
   uint32_t screened = 0, trials = 0;
   bool rescued = false;          // the model kept is one of those rescue_cut_counts screened
   uint64_t bytes_without = 0;    // the whole file without a low-rank model

@@ -474,6 +474,23 @@ std::vector<std::vector<AxisRun>> plan_axis_runs(const Model& model, const std::
   return runs;
 }
 
+ResidualPlanOptions narrow_to_plan(const ResidualPlanOptions& po, const PredictorPlan& won) {
+  ResidualPlanOptions narrow = po;
+  const uint32_t F = uint32_t(won.order.size());
+  for (uint32_t gop : po.gop_sizes)
+    if (coding_order(F, gop) == won.order) {
+      narrow.gop_sizes = {gop};
+      break;
+    }
+  narrow.cluster_layouts.clear();
+  for (const ResidualPlanOptions::ClusterLayout& layout : po.cluster_layouts)
+    if (layout.cluster_size == won.cluster_size && layout.motion_block == won.motion_block) {
+      narrow.cluster_layouts = {layout};
+      break;
+    }
+  return narrow;
+}
+
 PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
                                    double max_distance, std::vector<int32_t>* q, const ResidualOptions& caller_options,
                                    const ResidualPlanOptions& po) {

@@ -83,6 +83,11 @@ ResidualPlan choose_chunked_plan(const Model& model, const std::vector<std::vect
                                  double max_distance, std::vector<int32_t>* q, const ResidualOptions& options = {},
                                  const ResidualPlanOptions& plan_options = {});
 
+// `po` narrowed to what `won` (a plan choose_plan_and_grid made with `po`) chose: its coding
+// order's gop size, and its cluster layout or none when the one-cluster plan won. Planning
+// with the result tries one order and at most one layout.
+ResidualPlanOptions narrow_to_plan(const ResidualPlanOptions& po, const PredictorPlan& won);
+
 // Per frame, the grid values of each input coordinate that choose_plan_and_grid may snap it
 // to (plan_steps.h), as it computes them for these arguments; on up to `threads` threads
 // (0: all cores). Memory: 72 bytes per vertex and frame.
