@@ -293,8 +293,10 @@ uint64_t residual_plan_frames(uint64_t F) {
   return (po.gop_sizes.size() + po.cluster_layouts.size()) * F;
 }
 
-// Forecast frame plans of each Stage of encoding `anim` with `opt`.
-std::vector<uint64_t> forecast_stages(const Animation& anim, const EncodeOptions& opt) {
+// Forecast frame plans of each Stage of encoding `anim` with `opt`. follows_model: whether a
+// grid trial of part of the clip kept a low-rank model for the whole clip to follow
+// (start_model); assumed before the trials have run.
+std::vector<uint64_t> forecast_stages(const Animation& anim, const EncodeOptions& opt, bool follows_model = true) {
   const uint64_t F = anim.frames.size();
   const bool fast = opt.profile == Profile::Fast;
   const bool low_rank = opt.low_rank != 0 && !fast;
@@ -304,9 +306,11 @@ std::vector<uint64_t> forecast_stages(const Animation& anim, const EncodeOptions
   const uint64_t trial_frames = grid_trial_frames(uint32_t(F), anim.vertex_count);
   if (trials) stages[kGridStage] = (opt.effort == kMaxEffort ? kWalkTrials : 2) * plain(trial_frames);
   // After trials of part of the clip, the whole clip's plan follows the winner (start_model):
-  // one order and at most one layout, then one low-rank trial of two orders and layouts.
+  // one order and at most one layout, then one low-rank trial of two orders and layouts, or
+  // the whole low-rank search when the trial kept no model.
+  const uint64_t followed = 2 * F + (!low_rank ? 0 : follows_model ? 4 * F : forecast_low_rank_frames(uint32_t(F)));
   if (!trials) stages[kPlainStage] = plain(F);
-  else if (trial_frames < F) stages[kPlainStage] = opt.effort == kMaxEffort ? plain(F) : (low_rank ? 6 : 2) * F;
+  else if (trial_frames < F) stages[kPlainStage] = opt.effort == kMaxEffort ? plain(F) : followed;
   // The chunk choice plans each length at --effort 3; otherwise it cuts the kept plan and
   // plans only a length that wins, which a clip too long to be one chunk always has.
   const bool chunk_choice = opt.chunk_frames == 0 && !(fast && opt.model == ModelChoice::None);
@@ -366,6 +370,10 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   std::optional<TrialChoices> follow;
   if (!start_model(anim, opt, &start, &plain, &have_plain, &follow, &rep.curve_fallback, error)) return false;
   meter.end_stage();  // the grid (kGridStage)
+  if (follow) {
+    const std::vector<uint64_t> stages = forecast_stages(anim, opt, follow->low_rank.components > 0);
+    meter.forecast({stages.begin() + kPlainStage, stages.end()});
+  }
   // The file without a PDE model comes first: with --model none it is the file, otherwise
   // the motion model has to beat it, value by value and as a whole file.
   if (!have_plain && !encode_plain(anim, opt, start, &plain, error, nullptr, follow ? &*follow : nullptr)) return false;
