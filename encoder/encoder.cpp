@@ -152,7 +152,7 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   LowRankChoiceReport rep;
   if (!choose_low_rank(m, {plan, q}, context, lro, &rep, error, &out->coded)) return false;
   out->low_rank = rep.kept;
-  if (rep.components == 0) out->coded = {{std::move(plan), std::move(q)}, {}, {}};
+  if (rep.kept.components == 0) out->coded = {{std::move(plan), std::move(q)}, {}, {}};
   if (bytes) *bytes = rep.bytes;
   return true;
 }
@@ -217,12 +217,14 @@ bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out
   m.residual = choice.grid;
   m.residual.chunk_frames = chunk_frames;
   *have_plain = choice.whole;
-  if (choice.whole) *plain = std::move(trials[choice.slot]);
-  // The search over part of the clip chose for the whole: planning every order, layout and
-  // low-rank candidate again for the whole clip took most of a long clip's encode.
   const PlainEncode& won = trials[choice.slot];
-  if (!choice.whole && opt.effort != kMaxEffort && !won.residual_only_coded.plan.chunks.empty())
+  if (choice.whole) {
+    *plain = std::move(trials[choice.slot]);
+  } else if (opt.effort != kMaxEffort && !won.residual_only_coded.plan.chunks.empty()) {
+    // The search over part of the clip chose for the whole: planning every order, layout and
+    // low-rank candidate again for the whole clip took most of a long clip's encode.
     *follow = TrialChoices{won.residual_only_coded.plan.chunks[0], won.low_rank};
+  }
   return quantize_to_grid(anim, m.residual, &out->rounded, error);
 }
 

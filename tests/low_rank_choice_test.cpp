@@ -88,7 +88,7 @@ TEST(LowRankChoice, ACountTheFirstBasisStepCutOffGetsATrial) {
   ASSERT_TRUE(choose_low_rank(&plain, {p.plan, p.coded}, context, lro, &without, &err)) << err;
   EXPECT_TRUE(with.rescued);
   EXPECT_FALSE(without.rescued);
-  EXPECT_GT(with.components, 0u);
+  EXPECT_GT(with.kept.components, 0u);
   EXPECT_LT(with.bytes, without.bytes);
   EXPECT_LT(with.bytes, with.bytes_without);
   EXPECT_EQ(with.bytes_without, without.bytes_without);
@@ -109,8 +109,8 @@ TEST(LowRankChoice, FollowingTheKeptModelGivesTheSameFileWithoutScreening) {
   LowRankChoiceReport searched, followed, none;
   Model by_search = p.model, by_follow = p.model, without = p.model;
   ASSERT_TRUE(choose_low_rank(&by_search, {p.plan, p.coded}, context, {}, &searched, &err)) << err;
-  ASSERT_GT(searched.components, 0u);
-  EXPECT_EQ(searched.kept.components, searched.components);
+  ASSERT_GT(searched.kept.components, 0u);
+  EXPECT_GT(searched.kept.basis_step, 0.0);
   LowRankChoiceOptions follow;
   follow.follow = &searched.kept;
   ASSERT_TRUE(choose_low_rank(&by_follow, {p.plan, p.coded}, context, follow, &followed, &err)) << err;
@@ -121,7 +121,7 @@ TEST(LowRankChoice, FollowingTheKeptModelGivesTheSameFileWithoutScreening) {
   const LowRankPick no_model;
   follow.follow = &no_model;
   ASSERT_TRUE(choose_low_rank(&without, {p.plan, p.coded}, context, follow, &none, &err)) << err;
-  EXPECT_EQ(none.components, 0u);
+  EXPECT_EQ(none.kept.components, 0u);
   EXPECT_EQ(none.bytes, none.bytes_without);
   EXPECT_EQ(write_container(without, {}), write_container(p.model, {}));
 }

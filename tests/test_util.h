@@ -22,6 +22,12 @@
 #include "encoder/io/frames.h"
 #include "encoder/metrics.h"
 
+// The build defines the corpus folder (tests/CMakeLists.txt); beside the checkout otherwise,
+// so that this header compiles on its own.
+#ifndef DCURVE_CORPUS_EXT
+#define DCURVE_CORPUS_EXT "../shared/corpus-ext"
+#endif
+
 namespace dcurve::test {
 
 inline std::string corpus_ext(const std::string& name) { return std::string(DCURVE_CORPUS_EXT) + "/" + name; }

@@ -560,8 +560,6 @@ bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* by
     best_bytes_ = *bytes;
     best_model_ = std::move(trial);
     best_coded_ = std::move(coded);
-    rep_.components = c.model.components;
-    rep_.basis_step = c.basis_step;
     rep_.kept = {c.model.components, c.pca->anchor, !c.pca->poses.empty(), c.basis_step};
     rep_.rescued = from_rescue;
   }
@@ -659,7 +657,7 @@ bool LowRankSearch::run(LowRankChoiceReport* report, CodedResidual* kept) {
   shared_.model_prediction = nullptr;
   shared_.traversal = &traversal_for(*model_, shared_, &owned_traversal_);
   if (!(options_.follow ? follow(*options_.follow) : search())) return false;
-  if (rep_.components > 0) {
+  if (rep_.kept.components > 0) {
     *model_ = std::move(best_model_);
     if (kept) *kept = std::move(best_coded_);
     rep_.bytes = best_bytes_;

@@ -49,9 +49,7 @@ struct LowRankChoiceOptions {
 };
 
 struct LowRankChoiceReport {
-  uint32_t components = 0;       // K of the model kept, 0 when none
-  double basis_step = 0;         // grid units
-  LowRankPick kept;              // the model kept, as a choice another encode can follow
+  LowRankPick kept;              // the model kept (components 0 when none)
   uint32_t screened = 0, trials = 0;
   bool rescued = false;          // the model kept is one of those rescue_cut_counts screened
   uint64_t bytes_without = 0;    // the whole file without a low-rank model
