@@ -29,7 +29,7 @@ std::string input_name(const std::string& path) {
 // One bench input: a frame folder, a scene file or a built-in scene name (simulated here).
 bool load_input(const std::string& arg, std::string* name, Animation* anim, std::string* error) {
   *name = input_name(arg);
-  return load_animation_input(arg, true, progress_bar("simulate"), anim, error);
+  return load_animation_input(arg, true, progress_bar(input_stage_label(arg)), anim, error);
 }
 
 // The 2024 protocol as the paper describes it (bench/paper2024_faithful.h) and the honest one

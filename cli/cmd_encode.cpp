@@ -57,7 +57,7 @@ bool read_and_encode(const std::string& input, const InputOptions& io, EncodeOpt
                      Animation* anim, std::vector<uint8_t>* bytes, EncodeReport* rep, std::string* err) {
   const char* stage = "reading it";
   try {
-    if (!load_animation_input(input, io, msg.progress("simulate"), anim, err)) return false;
+    if (!load_animation_input(input, io, msg.progress(input_stage_label(input)), anim, err)) return false;
     msg.detail("read " + std::to_string(anim->frames.size()) + " frames of " + std::to_string(anim->vertex_count) +
                " vertices, " + std::to_string(anim->faces.size() / 3) + " triangles, " +
                std::to_string(anim->frame_rate) + " fps from " + input);

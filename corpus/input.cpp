@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "codec/common/error.h"
+#include "encoder/io/frame_times.h"
 #include "encoder/io/gltf_reader.h"
 #include "encoder/io/point_cache.h"
 #include "corpus/sim/scene.h"
@@ -12,7 +13,7 @@ namespace dcurve {
 bool load_animation_input(const std::string& input, bool allow_builtin, const std::function<void(double)>& progress,
                           Animation* anim, std::string* error) {
   std::error_code ec;
-  if (std::filesystem::is_directory(input, ec)) return read_frame_folder(input, anim, error);
+  if (std::filesystem::is_directory(input, ec)) return read_frame_folder(input, anim, error, progress);
   Scene scene;
   std::string err;
   if (std::filesystem::is_regular_file(input, ec)) {
@@ -49,6 +50,13 @@ bool load_point_cache(const std::string& input, const std::string& rest_mesh, ui
 
 }  // namespace
 
+std::string input_stage_label(const std::string& input) {
+  std::error_code ec;
+  PointCacheKind kind;
+  const bool read = std::filesystem::is_directory(input, ec) || is_gltf_path(input) || point_cache_kind(input, &kind);
+  return read ? "read" : "simulate";
+}
+
 bool load_animation_input(const std::string& input, const InputOptions& options, const std::function<void(double)>& progress,
                           Animation* anim, std::string* error) {
   PointCacheKind kind;
@@ -67,7 +75,8 @@ bool load_animation_input(const std::string& input, const InputOptions& options,
   if (ok && options.fps > 0) anim->frame_rate = options.fps;
   // The first frame's time: MDD states it in seconds, PC2 as a frame number at the clip's rate.
   if (ok && cache) anim->placement.start_time = kind == PointCacheKind::Pc2 ? info.start / anim->frame_rate : info.start;
-  return ok;
+  return ok && check_start_time(anim->placement.start_time, anim->frame_rate, anim->frames.size(),
+                                input + ": the first frame's time", error);
 }
 
 }  // namespace dcurve

@@ -23,6 +23,10 @@ struct InputOptions {
   ReadLimits limits;      // memory and glTF resource folders (glTF and point caches)
 };
 
+// "simulate" when `input` names a scene (a file that is not a glTF, a point cache or a mesh
+// folder, or a built-in scene's name), "read" otherwise: the progress label of loading it.
+std::string input_stage_label(const std::string& input);
+
 // As above, and also a glTF file (.gltf, .glb) or a point cache with its rest mesh.
 bool load_animation_input(const std::string& input, const InputOptions& options, const std::function<void(double)>& progress,
                           Animation* anim, std::string* error);

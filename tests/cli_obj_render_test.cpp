@@ -14,7 +14,7 @@
 
 #include "cli_util.h"
 #include "encoder/io/frames.h"
-#include "encoder/io/obj_corners.h"
+#include "encoder/io/obj_reader.h"
 #include "test_util.h"
 
 namespace dcurve::test {
@@ -60,10 +60,12 @@ TEST(CliObjRender, UvsNormalsAndMaterialsComeBackInObj) {
   CommandResult e = run_cli("encode " + dir / "in -o " + dir / "x.dcrv --tolerance 1e-3 -q");
   ASSERT_EQ(e.exit_code, 0) << e.output;
   ASSERT_EQ(run_cli("decode " + dir / "x.dcrv -o " + dir / "out/").exit_code, 0);
-  ObjCorners in, out;
+  ObjMesh in_mesh, out_mesh;
   std::string err;
-  ASSERT_TRUE(read_obj_corners(dir / "in/frame_00002.obj", &in, &err)) << err;
-  ASSERT_TRUE(read_obj_corners(dir / "out/frame_00002.obj", &out, &err)) << err;
+  ASSERT_TRUE(read_obj(dir / "in/frame_00002.obj", &in_mesh, &err)) << err;
+  ASSERT_TRUE(read_obj(dir / "out/frame_00002.obj", &out_mesh, &err)) << err;
+  const ObjCorners& in = in_mesh.corners;
+  const ObjCorners& out = out_mesh.corners;
   EXPECT_EQ(out.material_library, "cloth.mtl");
   EXPECT_EQ(out.materials, in.materials);
   // The same triangles, materials and corner UVs (14 bits over u's range [0, 0.6], v's [0, 1]),

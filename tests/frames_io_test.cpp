@@ -91,7 +91,7 @@ TEST(FramesIo, RecordsTheReadersWouldSkipAreRefused) {
       {"range.obj", square4 + "f 1 2 3\nf 2 4 5\n", "line 6: vertex index 5 out of range"},
       {"zero.obj", square4 + "f 1 2 3\nf 0 2 3\n", "line 6: vertex index 0 out of range"},
       {"back.obj", square4 + "f -1 -2 -5\n", "line 5: vertex index -5 out of range"},
-      {"degenerate.obj", square4 + "f 1 2 3\nf 2/1 4/1 2/1\n", "line 6: the face uses vertex 2 twice"},
+      {"degenerate.obj", square4 + "vt 0 0\nf 1 2 3\nf 2/1 4/1 2/1\n", "line 7: the face uses vertex 2 twice"},
       {"line.obj", square4 + "f 1 2\n", "line 5: a face needs 3 or more vertices"},
       {"range.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 4\n", "line 8: face 1"},
       {"degenerate.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 1 3\n", "face"},

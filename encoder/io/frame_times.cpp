@@ -48,4 +48,15 @@ bool frame_rate_from_times(const std::vector<double>& times, const std::string& 
   return true;
 }
 
+bool check_start_time(double start, double fps, size_t frame_count, const std::string& what, std::string* error) {
+  if (!std::isfinite(start)) return fail(error, what + " is " + number(start) + ", not a finite number");
+  std::vector<double> times(frame_count);
+  for (size_t f = 0; f < frame_count; ++f) times[f] = double(float(start + double(f) / fps));
+  double rate = fps;
+  std::string why;
+  if (!frame_rate_from_times(times, "its frame times", &rate, &why))
+    return fail(error, what + " is " + number(start) + " s: " + why + " as 32-bit floats (outputs store them so)");
+  return true;
+}
+
 }  // namespace dcurve

@@ -13,6 +13,7 @@
 #include "encoder/io/frame_order.h"
 #include "encoder/io/mesh_writer.h"
 #include "encoder/io/obj_corners.h"
+#include "encoder/io/obj_reader.h"
 #include "encoder/io/polygon_reader.h"
 #include "encoder/io/text_mesh_check.h"
 
@@ -70,18 +71,30 @@ bool copy_finite_vertices(const std::string& path, const PolygonSoup& soup, std:
 
 }  // namespace
 
-bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uint32_t>* faces,
-               std::string* error) {
-  if (!check_input_file(path, error)) return false;
+namespace {
+
+// OFF and PLY through OpenMesh's readers, checked before (text_mesh_check) and after
+// (counts_match): those readers open no other file.
+bool read_openmesh_soup(const std::string& path, PolygonSoup* soup, std::string* error) {
   DeclaredCounts declared;
-  if (!check_text_mesh_vertices(path, &declared, error)) return false;
-  PolygonSoup soup;
-  if (!read_polygon_soup(path, &soup, error)) return false;
+  return check_text_mesh_vertices(path, &declared, error) && read_polygon_soup(path, soup, error) &&
+         counts_match(path, declared, *soup, error);
+}
+
+}  // namespace
+
+bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uint32_t>* faces,
+               std::string* error, ObjCorners* corners) {
+  if (!check_input_file(path, error)) return false;
+  const bool obj = lowercase_extension(path) == ".obj";
+  ObjMesh mesh;
+  if (obj ? !read_obj(path, &mesh, error) : !read_openmesh_soup(path, &mesh.soup, error)) return false;
+  const PolygonSoup& soup = mesh.soup;
   if (soup.xyz.empty()) return fail(error, path + ": mesh has no vertices");
-  if (!counts_match(path, declared, soup, error)) return false;
   faces->clear();
   for (size_t p = 0; p < soup.polygon_count(); ++p)
     if (!append_polygon(path, soup, p, faces, error)) return false;
+  if (corners) *corners = std::move(mesh.corners);
   return copy_finite_vertices(path, soup, xyz, error);
 }
 
@@ -144,8 +157,10 @@ bool list_frame_files(const std::string& dir, std::vector<std::string>* files, s
   return true;
 }
 
-bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error) {
+bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error,
+                       const std::function<void(double)>& progress) {
   std::vector<std::string> files;
+  ObjCorners corners;
   long long step = 1;
   if (!list_frame_files(dir, &files, error, &step)) return false;
   *anim = Animation{};
@@ -153,7 +168,7 @@ bool read_frame_folder(const std::string& dir, Animation* anim, std::string* err
   for (size_t f = 0; f < files.size(); ++f) {
     std::vector<float> xyz;
     std::vector<uint32_t> faces;
-    if (!read_mesh(files[f], &xyz, &faces, error)) return false;
+    if (!read_mesh(files[f], &xyz, &faces, error, f == 0 ? &corners : nullptr)) return false;
     if (f == 0) {
       anim->vertex_count = uint32_t(xyz.size() / 3);
       anim->faces = std::move(faces);
@@ -164,11 +179,9 @@ bool read_frame_folder(const std::string& dir, Animation* anim, std::string* err
       return fail(error, files[f] + ": connectivity differs from frame 0");
     }
     anim->frames.push_back(std::move(xyz));
+    if (progress) progress(double(f + 1) / double(files.size()));
   }
   // An OBJ's UVs, normals and materials, as frame 0 gives them (they do not animate).
-  if (lowercase_extension(files[0]) != ".obj") return true;
-  ObjCorners corners;
-  if (!read_obj_corners(files[0], &corners, error)) return false;
   return obj_render(corners, anim, error) || fail(error, files[0] + ": " + *error);
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,13 +13,17 @@
 namespace dcurve {
 
 class OutputFolder;
+struct ObjCorners;
 
-// Reads one mesh (a regular file; a FIFO or device is refused by name). Polygons become fans of triangles from their first vertex; non-manifold
-// faces are kept as they are. Refused, with the file named: a vertex count or face count that
-// differs from the file's own, a face with fewer than 3 vertices, an index out of range or a
-// vertex used twice, a coordinate that is not finite or beyond kMaxCoordinate.
+// Reads one mesh (a regular file; a FIFO or device is refused by name). OBJ is parsed by
+// encoder/io/obj_reader.h, which opens no other file; OFF and PLY through OpenMesh's readers.
+// Polygons become fans of triangles from their first vertex; non-manifold faces are kept as
+// they are. Refused, with the file named: a vertex count or face count that differs from the
+// file's own, a face with fewer than 3 vertices, an index out of range or a vertex used twice,
+// a coordinate that is not finite or beyond kMaxCoordinate. `corners`, when given, receives an
+// OBJ's UVs, normals and materials per corner (empty for OFF and PLY).
 bool read_mesh(const std::string& path, std::vector<float>* xyz, std::vector<uint32_t>* faces,
-               std::string* error);
+               std::string* error, ObjCorners* corners = nullptr);
 
 // Writes one mesh; the format follows the extension (.obj, .ply, .off; encoder/io/mesh_writer.h).
 // Written through an OutputFile, so a failure leaves no partial file; a regular file at `path`
@@ -47,8 +52,9 @@ bool list_frame_files(const std::string& dir, std::vector<std::string>* files, s
 
 // Reads every .obj/.ply/.off file of `dir` in frame-number order. All frames must have the same
 // vertex count and face list, and finite coordinates. The frame rate is kFolderFrameRate over
-// the step between the frame numbers.
-bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error);
+// the step between the frame numbers. `progress` gets the fraction of files read.
+bool read_frame_folder(const std::string& dir, Animation* anim, std::string* error,
+                       const std::function<void(double)>& progress = {});
 
 // Writes DIR/frame_00000.EXT, frame_00001.EXT, ... (EXT = "obj" or "ply") through an
 // OutputFolder: DIR is created, or its frames are replaced as a whole.

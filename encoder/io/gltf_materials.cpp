@@ -1,7 +1,9 @@
 #include "encoder/io/gltf_materials.h"
 
 #include <tiny_gltf.h>
+#include <sys/stat.h>
 
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -77,6 +79,17 @@ std::string sniff_mime(const std::vector<uint8_t>& b) {
   return "";
 }
 
+// An image's bytes live this many times at once while a file is encoded (measured: peak
+// memory grows by 4 bytes per image byte; the input's, the model's, the MATL section's and
+// the written file's). The budget takes them all before the first copy, so --max-memory bounds
+// what an image costs, not only its first copy (tests/cli_hostile_assets_test.cpp).
+constexpr uint64_t kImageCopies = 4;
+
+bool take_image(uint64_t bytes, const std::string& what, MemoryBudget* budget, std::string* error) {
+  return budget->take(bytes, kImageCopies, what + " (" + std::to_string(bytes) + " bytes, held " +
+                                               std::to_string(kImageCopies) + " times while encoding)", error);
+}
+
 // An image's bytes: its bufferView's, its data: uri's (tinygltf decoded them into
 // image.image, see gltf_load.cpp), or its file's, read under the resource policy.
 bool image_bytes(const tinygltf::Model& model, size_t index, const std::string& gltf_dir, const ReadLimits& limits,
@@ -91,19 +104,23 @@ bool image_bytes(const tinygltf::Model& model, size_t index, const std::string& 
     const std::vector<unsigned char>& data = model.buffers[v.buffer].data;
     if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset)
       return fail(error, what + ": its bufferView runs past its buffer");
+    if (!take_image(v.byteLength, what, budget, error)) return false;
     out->assign(data.begin() + std::ptrdiff_t(v.byteOffset), data.begin() + std::ptrdiff_t(v.byteOffset + v.byteLength));
     return true;
   }
   if (!im.image.empty()) {
+    if (!take_image(im.image.size(), what, budget, error)) return false;
     out->assign(im.image.begin(), im.image.end());
     return true;
   }
   std::string path, err;
+  struct stat st;
   if (im.uri.empty() || im.uri.rfind("data:", 0) == 0) return fail(error, what + " has no data");
-  if (!resolve_resource(gltf_dir, limits.resource_dirs, im.uri, &path, &err) || !check_input_file(path, &err) ||
-      !read_file(path, out, &err, limits.max_memory))
+  if (!resolve_resource(gltf_dir, limits.resource_dirs, im.uri, &path, &err) || !check_input_file(path, &err))
     return fail(error, what + ": " + err);
-  return budget->take(out->size(), 1, what, error);
+  if (stat(path.c_str(), &st) != 0) return fail(error, what + ": " + path + ": " + std::strerror(errno));
+  if (!take_image(uint64_t(st.st_size), what, budget, error)) return false;
+  return read_file(path, out, &err, uint64_t(st.st_size)) || fail(error, what + ": " + err);
 }
 
 bool collect_images(const Json& doc, const tinygltf::Model& model, const Renumbering& images, const std::string& gltf_dir,

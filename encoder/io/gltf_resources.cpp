@@ -95,14 +95,18 @@ bool check_data_uri(const std::string& what, const std::string& uri, uint64_t by
 // Resolves a used buffer's file and checks its type and size against byteLength.
 bool plan_external_buffer(const std::string& what, const std::string& uri, uint64_t byte_length, bool used,
                           const std::string& gltf_dir, const ReadLimits& limits, BufferPlan* plan, std::string* error) {
-  std::string key;
-  if (!decode_uri(uri, &key)) return fail(error, what + ": uri '" + quote_file_text(uri) + "' has a malformed %-escape");
+  std::string key, path, err;
+  if (!decode_uri(uri, &key, UriPlus::Space)) return fail(error, what + ": uri '" + quote_file_text(uri) + "' has a malformed %-escape");
   PlannedBuffer& entry = plan->files[key];
   ++entry.serves_left;
   entry.byte_length = byte_length;
-  if (!used || !entry.path.empty()) return true;
-  std::string err;
-  if (!resolve_resource(gltf_dir, limits.resource_dirs, uri, &entry.path, &err)) return fail(error, what + ": " + err);
+  if (!used) return true;
+  if (!resolve_resource(gltf_dir, limits.resource_dirs, uri, &path, &err)) return fail(error, what + ": " + err);
+  // tinygltf asks for "a b.bin" both for "a+b.bin" and for "a%20b.bin": two files it cannot tell apart.
+  if (!entry.path.empty() && entry.path != path)
+    return fail(error, what + ": uri '" + quote_file_text(uri) + "' and another buffer's name two files that tinygltf reads as one");
+  if (!entry.path.empty()) return true;
+  entry.path = path;
   struct stat st;
   if (stat(entry.path.c_str(), &st) != 0)
     return fail(error, what + ": uri '" + quote_file_text(uri) + "': " + std::strerror(errno));
@@ -141,10 +145,10 @@ bool check_image_data_uris(const json& doc, std::string* error) {
 
 }  // namespace
 
-bool decode_uri(const std::string& uri, std::string* decoded) {
+bool decode_uri(const std::string& uri, std::string* decoded, UriPlus plus) {
   decoded->clear();
   for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '+') {
+    if (uri[i] == '+' && plus == UriPlus::Space) {
       decoded->push_back(' ');
     } else if (uri[i] == '%') {
       if (i + 2 >= uri.size()) return false;

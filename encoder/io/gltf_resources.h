@@ -31,9 +31,12 @@ struct BufferPlan {
   std::map<std::string, PlannedBuffer> files;
 };
 
-// Percent-decodes a uri the way tinygltf does ('+' is a space); false on a '%' that is not
-// followed by two hex digits.
-bool decode_uri(const std::string& uri, std::string* decoded);
+// What '+' means in a uri: itself (RFC 3986, how dcurve finds a file), or a space (how
+// tinygltf decodes a buffer's uri before it asks for the file: the key it is served by).
+enum class UriPlus { Literal, Space };
+
+// Percent-decodes a uri; false on a '%' that is not followed by two hex digits.
+bool decode_uri(const std::string& uri, std::string* decoded, UriPlus plus = UriPlus::Literal);
 
 // The file `uri` names, under the policy above: `gltf_dir` is the glTF's folder.
 bool resolve_resource(const std::string& gltf_dir, const std::vector<std::string>& allowed_dirs,

@@ -4,99 +4,15 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <map>
-#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include "codec/common/error.h"
-#include "encoder/io/files.h"
 
 namespace dcurve {
 namespace {
-
-struct Corner {
-  int64_t v = -1, vt = -1, vn = -1;
-};
-
-// An OBJ index (1-based, or negative: counted back from the last one read) as 0-based.
-bool resolve(const std::string& text, size_t count, int64_t* out) {
-  char* end = nullptr;
-  const long long i = std::strtoll(text.c_str(), &end, 10);
-  if (end == text.c_str() || *end != '\0' || i == 0) return false;
-  const long long r = i > 0 ? i - 1 : (long long)count + i;
-  if (r < 0 || size_t(r) >= count) return false;
-  *out = r;
-  return true;
-}
-
-bool parse_corner(const std::string& token, const size_t counts[3], Corner* c) {
-  std::string part[3];
-  size_t k = 0;
-  for (char ch : token) {
-    if (ch == '/') {
-      if (++k > 2) return false;
-    } else {
-      part[k] += ch;
-    }
-  }
-  if (!resolve(part[0], counts[0], &c->v)) return false;
-  if (!part[1].empty() && !resolve(part[1], counts[1], &c->vt)) return false;
-  return part[2].empty() || resolve(part[2], counts[2], &c->vn);
-}
-
-struct Reader {
-  ObjCorners* out;
-  size_t counts[3] = {0, 0, 0};  // v, vt, vn read so far
-  int32_t material = -1;
-
-  void use_material(const std::string& name) {
-    auto it = std::find(out->materials.begin(), out->materials.end(), name);
-    material = int32_t(it - out->materials.begin());
-    if (it == out->materials.end()) out->materials.push_back(name);
-  }
-
-  void add_polygon(const std::vector<Corner>& p) {
-    for (size_t k = 1; k + 1 < p.size(); ++k) {
-      for (const Corner* c : {&p[0], &p[k], &p[k + 1]}) {
-        out->vertex.push_back(uint32_t(c->v));
-        out->texcoord.push_back(c->vt);
-        out->normal.push_back(c->vn);
-      }
-      out->face_material.push_back(material);
-    }
-  }
-
-  bool line(std::istringstream& in, const std::string& key) {
-    float x = 0, y = 0, z = 0;
-    if (key == "v") ++counts[0];
-    else if (key == "vt") {
-      in >> x >> y;
-      out->texcoords.insert(out->texcoords.end(), {x, y});
-      ++counts[1];
-    } else if (key == "vn") {
-      in >> x >> y >> z;
-      out->normals.insert(out->normals.end(), {x, y, z});
-      ++counts[2];
-    } else if (key == "usemtl") {
-      std::string name;
-      in >> name;
-      use_material(name);
-    } else if (key == "mtllib" && out->material_library.empty()) {
-      in >> out->material_library;
-    } else if (key == "f") {
-      std::vector<Corner> p;
-      for (std::string token; in >> token;) {
-        p.emplace_back();
-        if (!parse_corner(token, counts, &p.back())) return false;
-      }
-      add_polygon(p);
-    }
-    return true;
-  }
-};
 
 using CopyKey = std::tuple<uint32_t, int64_t, int64_t>;  // vertex, vt, vn
 
@@ -155,24 +71,6 @@ void add_groups(const ObjCorners& c, Animation* anim) {
 }
 
 }  // namespace
-
-bool read_obj_corners(const std::string& path, ObjCorners* out, std::string* error) {
-  *out = ObjCorners{};
-  std::vector<uint8_t> bytes;
-  if (!read_file(path, &bytes, error)) return false;
-  std::istringstream text(std::string(bytes.begin(), bytes.end()));
-  Reader reader{out};
-  size_t number = 0;
-  for (std::string line; std::getline(text, line);) {
-    ++number;
-    std::istringstream in(line);
-    std::string key;
-    if (!(in >> key)) continue;
-    if (!reader.line(in, key))
-      return fail(error, path + ": line " + std::to_string(number) + ": a face corner is malformed or out of range");
-  }
-  return true;
-}
 
 bool obj_render(const ObjCorners& c, Animation* anim, std::string* error) {
   if (c.texcoords.empty() && c.normals.empty() && c.materials.empty()) return true;

@@ -1,7 +1,7 @@
 // What an OBJ's faces say besides positions: each corner's texture coordinate and normal
-// (`f v/vt/vn`), each face's material (`usemtl`) and the material library (`mtllib`). OpenMesh
-// reads the positions and faces (polygon_reader.h); this reads the rest of the same records,
-// so the encoder can keep UVs, normals and material groups (Animation::render).
+// (`f v/vt/vn`), each face's material (`usemtl`) and the material library (`mtllib`), as
+// obj_reader.h parses them, turned into render vertices and material groups
+// (Animation::render).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -23,10 +23,6 @@ struct ObjCorners {
   std::vector<std::string> materials;  // usemtl names, in order of first use
   std::string material_library;        // the first mtllib's file name, "" without
 };
-
-// Reads the OBJ at `path` (already read by read_mesh, which checked its records). False with
-// a message on an index out of range or malformed corner.
-bool read_obj_corners(const std::string& path, ObjCorners* out, std::string* error);
 
 // anim->render (render vertices sorted by vertex, copies in order of first use; UVs flipped
 // to glTF's v), groups and material names from `c`, whose triangles must be anim->faces.

@@ -1,5 +1,6 @@
-// Reads a mesh file's vertices and polygons exactly as stored, through OpenMesh's readers
-// (OBJ, OFF, PLY; text and binary) but without OpenMesh's mesh kernel: the kernel cannot
+// Reads a mesh file's vertices and polygons exactly as stored, through OpenMesh's readers (OFF,
+// PLY, text and binary; OBJ has its own reader, obj_reader.h, since OpenMesh's opens the files
+// an OBJ's mtllib names) but without OpenMesh's mesh kernel: the kernel cannot
 // hold a non-manifold edge and its importer duplicates the vertices of such a face, so
 // vertex i read would no longer be vertex i in the file.
 #pragma once

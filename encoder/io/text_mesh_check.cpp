@@ -42,52 +42,6 @@ bool bad_record(const std::string& path, size_t line, std::string* error) {
   return fail(error, path + ": line " + std::to_string(line) + ": vertex values are not finite numbers within float range");
 }
 
-// The record's keyword ("v", "f", ...) at line[i], followed by white space (as a stream reads
-// it: form feeds too) or the line's end.
-bool obj_record(const std::string& line, size_t i, char keyword) {
-  return i != std::string::npos && line[i] == keyword &&
-         (i + 1 == line.size() || std::isspace(static_cast<unsigned char>(line[i + 1])));
-}
-
-// What is wrong with the "f" record `p` (after the keyword) when `vertices` are defined so
-// far, or "" when nothing is: OpenMesh's OBJ reader drops a face with an index out of range
-// or a vertex used twice. Indices are 1-based, or negative counting back from the last.
-std::string obj_face_problem(const char* p, long long vertices) {
-  std::vector<long long> ids;
-  for (;;) {
-    while (*p == ' ' || *p == '\t' || *p == '\r') ++p;
-    if (*p == '\0' || *p == '#') break;
-    char* end = nullptr;
-    const long long i = std::strtoll(p, &end, 10);
-    if (end == p) return "a face vertex is not an index";
-    const long long id = i < 0 ? vertices + i : i - 1;
-    if (i == 0 || id < 0 || id >= vertices) return "vertex index " + std::to_string(i) + " out of range";
-    if (std::find(ids.begin(), ids.end(), id) != ids.end())
-      return "the face uses vertex " + std::to_string(id + 1) + " twice (degenerate face)";
-    ids.push_back(id);
-    p = end;
-    while (*p != '\0' && *p != ' ' && *p != '\t' && *p != '\r') ++p;  // "/texcoord/normal"
-  }
-  return ids.size() < 3 ? "a face needs 3 or more vertices" : "";
-}
-
-bool check_obj(std::ifstream& in, const std::string& path, DeclaredCounts* declared, std::string* error) {
-  std::string line;
-  declared->vertices = declared->faces = 0;
-  for (size_t number = 1; std::getline(in, line); ++number) {
-    const size_t i = line.find_first_not_of(" \t\r\f\v");
-    if (obj_record(line, i, 'f')) {
-      ++declared->faces;
-      const std::string problem = obj_face_problem(line.c_str() + i + 1, declared->vertices);
-      if (!problem.empty()) return fail(error, path + ": line " + std::to_string(number) + ": " + problem);
-    }
-    if (!obj_record(line, i, 'v')) continue;
-    ++declared->vertices;
-    if (!finite_numbers(line.c_str() + i + 1, 3)) return bad_record(path, number, error);
-  }
-  return true;
-}
-
 // Next line that is neither blank nor a comment; false at the end of the file.
 bool next_content_line(std::ifstream& in, std::string* line, size_t* number) {
   while (std::getline(in, *line)) {
@@ -221,7 +175,7 @@ void rewind(std::ifstream& in) {
 bool check_text_mesh_vertices(const std::string& path, DeclaredCounts* declared, std::string* error) {
   *declared = DeclaredCounts{};
   const std::string ext = lowercase_extension(path);
-  if (ext != ".obj" && ext != ".off" && ext != ".ply") return true;
+  if (ext != ".off" && ext != ".ply") return true;
   std::ifstream in(path, std::ios::binary);
   if (!in) return true;  // unreadable: OpenMesh reports it
   const bool binary_ply = ext == ".ply" && !ply_is_ascii(in);
@@ -229,7 +183,6 @@ bool check_text_mesh_vertices(const std::string& path, DeclaredCounts* declared,
   if (const size_t line = control_character_line(in, binary_ply))
     return fail(error, path + ": line " + std::to_string(line) + ": a control character in a text mesh file");
   rewind(in);
-  if (ext == ".obj") return check_obj(in, path, declared, error);
   if (ext == ".off") return check_off(in, path, declared, error);
   return check_ply(in, path, declared, error);
 }

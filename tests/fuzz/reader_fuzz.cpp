@@ -5,6 +5,9 @@
 // A crash, sanitizer report, hang, a rejection without a message, or an accepted input that
 // is inconsistent (another vertex count than the file declares, a frame of the wrong size, an
 // index out of range, a coordinate that is not finite) is a finding.
+// An OBJ is read with its corners (UVs, normals, usemtl groups) and turned into render
+// vertices and groups, checked for consistency; its mtllib must never be opened: the scratch
+// folder holds fifo.mtl, a FIFO that would hang the reader (a timeout is a finding).
 // A glTF is written into asset/ of a scratch folder that also holds what its uris may name
 // (asset/buf.bin, 100 bytes of a triangle animation) and what they must not read: a FIFO, a
 // folder, a link to a file outside and that file (outside.bin, every float kOutsideMarker).
@@ -25,6 +28,7 @@
 
 #include "encoder/io/frames.h"
 #include "encoder/io/gltf_reader.h"
+#include "encoder/io/obj_corners.h"
 #include "encoder/io/point_cache.h"
 
 namespace {
@@ -106,7 +110,7 @@ void make_companions(const std::string& dir) {
   std::memcpy(buf + 72, ids, 12);
   std::memcpy(buf + 84, keys, 16);
   if (mkdir((dir + "/asset").c_str(), 0700) != 0 || mkdir((dir + "/asset/dir.bin").c_str(), 0700) != 0 ||
-      mkfifo((dir + "/asset/fifo.bin").c_str(), 0600) != 0 ||
+      mkfifo((dir + "/asset/fifo.bin").c_str(), 0600) != 0 || mkfifo((dir + "/fifo.mtl").c_str(), 0600) != 0 ||
       symlink((dir + "/outside.bin").c_str(), (dir + "/asset/link.bin").c_str()) != 0)
     std::abort();
   write_file(dir + "/asset/buf.bin", buf, 100);
@@ -148,15 +152,37 @@ void check_animation(const dcurve::Animation& anim) {
   check_faces(anim.faces, anim.vertex_count);
 }
 
+// An OBJ's render vertices and groups: every corner names a render vertex of its own
+// triangle's vertex, every attribute value is finite, every triangle has a group.
+void check_obj_render(const dcurve::Animation& anim) {
+  const dcurve::AnimationRender& r = anim.render;
+  if (r.empty()) return;
+  if (r.corners.size() != anim.faces.size()) __builtin_trap();
+  for (size_t k = 0; k < r.corners.size(); ++k)
+    if (r.corners[k] >= r.source.size() || r.source[r.corners[k]] != anim.faces[k]) __builtin_trap();
+  for (const auto& a : r.attributes) {
+    if (a.values.size() != r.source.size() * a.components) __builtin_trap();
+    for (float x : a.values)
+      if (!std::isfinite(x)) __builtin_trap();
+  }
+  if (!r.groups.empty() && r.face_group.size() != anim.faces.size() / 3) __builtin_trap();
+  for (uint32_t g : r.face_group)
+    if (g >= r.groups.size()) __builtin_trap();
+}
+
 bool read_as_mesh(const Input& input, const std::string& path, std::string* error) {
+  dcurve::Animation anim;
   std::vector<float> xyz;
-  std::vector<uint32_t> faces;
-  if (!dcurve::read_mesh(path, &xyz, &faces, error)) return false;
+  dcurve::ObjCorners corners;
+  if (!dcurve::read_mesh(path, &xyz, &anim.faces, error, &corners)) return false;
   const size_t vertices = xyz.size() / 3;
   const long long declared = declared_mesh_vertices(input.bytes, input.extension);
   if (declared >= 0 && size_t(declared) != vertices) __builtin_trap();  // silent change of vertex count
   check_positions(xyz, vertices);
-  check_faces(faces, vertices);
+  check_faces(anim.faces, vertices);
+  anim.vertex_count = uint32_t(vertices);
+  if (!dcurve::obj_render(corners, &anim, error)) return false;
+  check_obj_render(anim);
   return true;
 }
 
