@@ -116,7 +116,7 @@ TEST(HostileRender, DeeplyNestedMaterialsAreRefusedByTheGltfWriter) {
 
 TEST(HostileRender, ManyFaceGroupsWriteGltfInLinearTime) {
   TempDir dir;
-  constexpr uint32_t kGroups = 50000;
+  constexpr uint32_t kGroups = 100000;
   std::vector<uint32_t> faces;
   GltfScene scene;
   for (uint32_t g = 0; g < kGroups; ++g) {
@@ -127,7 +127,7 @@ TEST(HostileRender, ManyFaceGroupsWriteGltfInLinearTime) {
   const std::clock_t start = std::clock();
   ASSERT_EQ(write_gltf(dir / "o.glb", faces, 3, scene), "");
   const double seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
-  EXPECT_LT(seconds, 30.0);  // about 1 s; splicing the targets into each primitive took minutes
+  EXPECT_LT(seconds, 20.0);  // 2.4 s; splicing the targets into each primitive took 60 s
   const json doc = glb_json(dir / "o.glb");
   ASSERT_EQ(doc["meshes"][0]["primitives"].size(), kGroups);
   EXPECT_EQ(doc["meshes"][0]["primitives"][kGroups - 1]["targets"].size(), 2u);

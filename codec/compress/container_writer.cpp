@@ -22,9 +22,15 @@ namespace {
 
 using namespace container_format;  // what both sides of the format share
 
-// MATL's level: its images (PNG, JPEG, KTX2) are mostly compressed already, and level 19
-// spends minutes on megabytes it cannot shrink; level 3 takes what a raw texture offers.
+// MATL's level past 64 KiB: its images (PNG, JPEG, KTX2) are mostly compressed already, and
+// level 19 spends minutes on megabytes it cannot shrink; level 3 takes what a raw texture
+// offers. A smaller MATL (the JSON, small images) keeps the section level: it costs nothing.
 constexpr int kImageZstdLevel = 3;
+constexpr size_t kImageLevelBytes = size_t(64) << 10;
+
+int section_level(uint32_t tag, size_t raw_bytes, int level) {
+  return tag == kMaterials && raw_bytes > kImageLevelBytes ? std::min(level, kImageZstdLevel) : level;
+}
 
 // Whether a reader accepts `raw` bytes of section `tag` stored as `stored` (section 15): REND's
 // against the value budget of a file of `stored` bytes, which the whole file can only raise.
@@ -186,7 +192,7 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   // Positions decode without FACE, REND and PLAC: a reader that skips them is still right.
   for (const auto& [tag, raw] : sections) {
     SectionInfo info = put_section(body, tag, tag != kFaces && tag != kRender && tag != kPlacement && tag != kMaterials,
-                                   raw, tag == kMaterials ? std::min(options.zstd_level, kImageZstdLevel) : options.zstd_level);
+                                   raw, section_level(tag, raw.size(), options.zstd_level));
     info.offset += kHeaderBytes;
     if (infos) infos->push_back(std::move(info));
   }

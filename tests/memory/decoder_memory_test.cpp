@@ -177,7 +177,7 @@ TEST(DecoderMemory, FastPlaybackHoldsFramesNotChunksAndDoesNotGrow) {
 
 // A 4 x 4 sheet with render vertices, whose REND section is replaced by one of `groups` face
 // groups under zstd: 2 bytes each (no material, an empty name), read into 48 bytes each. The
-// first group's name, 1024 random letters, keeps the frame within the 4096:1 a reader accepts.
+// first two groups' names, 1424 random bytes, keep the frame within the 4096:1 a reader accepts.
 std::vector<uint8_t> file_with_groups(uint64_t groups) {
   Animation a;
   a.vertex_count = 16;
@@ -200,11 +200,11 @@ std::vector<uint8_t> file_with_groups(uint64_t groups) {
   rend.u8(0);                                          // no attributes
   rend.varint(groups);
   std::mt19937 random(11);
-  std::string name(1024, ' ');
-  for (char& c : name) c = char('a' + random() % 26);
+  std::string name(1424, ' ');
+  for (char& c : name) c = char(random());
   for (uint64_t g = 0; g < groups; ++g) {
     rend.varint(0);
-    rend.str(g == 0 ? name : "");
+    rend.str(g == 0 ? name.substr(0, 1024) : g == 1 ? name.substr(1024) : "");
   }
   rend.varint(0);
   rend.varint(0);
@@ -215,10 +215,10 @@ std::vector<uint8_t> file_with_groups(uint64_t groups) {
 }
 
 // Reading REND stays within the value budget of section 15 (4 bytes per value of
-// max(2^23, 8192 * file bytes)): a file of 4 million raw REND bytes in a few KB is refused
-// before they are decompressed, one of 0.8 million is read within the budget.
+// max(2^23, 8192 * file bytes)): a file of 4.2 million raw REND bytes in 1.7 KB (which would
+// take 100 MB) is refused before they are decompressed, one of 0.8 million is read within it.
 TEST(DecoderMemory, RenderSectionsAreReadWithinTheValueBudget) {
-  for (uint64_t groups : {2000000, 400000}) {
+  for (uint64_t groups : {2100000, 400000}) {
     const std::vector<uint8_t> file = file_with_groups(groups);
     const size_t budget = 4 * decoder_value_budget(file.size());
     const size_t before = live_bytes;
