@@ -10,6 +10,7 @@
 #include "codec/common/inbetween.h"
 #include "codec/common/render_mesh.h"
 #include "encoder/io/files.h"
+#include "encoder/io/json_depth.h"
 #include "encoder/io/obj_corners.h"
 #include "decoder/dcurve.hpp"
 
@@ -98,6 +99,20 @@ void describe_obj_output(const Decoder& dec, OutputSpec* spec) {
   obj.material_library = obj_material_library(dec.materials_json());
 }
 
+bool obj_output(const DecodeOpts& o) {
+  return (o.kind == OutputKind::Mesh && lowercase_extension(o.output) == ".obj") ||
+         (o.kind == OutputKind::Folder && o.format == "obj");
+}
+
+// glTF and OBJ outputs parse the materials' JSON (MATL): one nested deeper than any glTF is
+// refused before a copy or dump of it can overflow the stack.
+bool check_materials(const DecodeOpts& o, const Decoder& dec, std::string* error) {
+  if (o.kind != OutputKind::Gltf && !obj_output(o)) return true;
+  const std::string& json = dec.materials_json();
+  return check_json_depth(json.data(), json.size(), kMaxJsonDepth, error) ||
+         fail(error, o.input + ": its materials (MATL): " + *error);
+}
+
 OutputSpec output_spec(const DecodeOpts& o, const Decoder& dec, uint32_t frames) {
   OutputSpec spec;
   spec.path = o.output;
@@ -113,9 +128,7 @@ OutputSpec output_spec(const DecodeOpts& o, const Decoder& dec, uint32_t frames)
   spec.frame_rate = frames > 1 && duration > 0 ? (frames - 1) / duration : dec.frame_rate();
   spec.start_time = dec.start_time();
   if (o.kind == OutputKind::Gltf) describe_render_output(dec, &spec);
-  if ((o.kind == OutputKind::Mesh && lowercase_extension(o.output) == ".obj") ||
-      (o.kind == OutputKind::Folder && o.format == "obj"))
-    describe_obj_output(dec, &spec);
+  if (obj_output(o)) describe_obj_output(dec, &spec);
   return spec;
 }
 
@@ -125,7 +138,7 @@ int run_decode(const DecodeOpts& o, const Messages& msg) {
   auto dec = Decoder::open_file(o.input, &err);
   if (!dec) return msg.error(err);
   std::vector<double> times;
-  if (!decode_times(o, *dec, &times, &err)) return msg.error(err);
+  if (!decode_times(o, *dec, &times, &err) || !check_materials(o, *dec, &err)) return msg.error(err);
   const OutputSpec spec = output_spec(o, *dec, uint32_t(times.size()));
   const bool spec_obj_empty = spec.obj.empty();
   auto sink = open_output(spec, &err);

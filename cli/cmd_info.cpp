@@ -16,6 +16,7 @@
 #include "decoder/dcurve.hpp"
 #include "encoder/face_order.h"
 #include "encoder/io/files.h"
+#include "encoder/io/quoted_text.h"
 #include "encoder/rate/plan_report.h"
 
 namespace dcurve::cli {
@@ -195,6 +196,17 @@ std::string printable(const std::string& text) {
   return out;
 }
 
+// The first few group names, each cut, and how many more: a file may hold 100,000 groups
+// (--json lists them all).
+std::string group_names_text(const nlohmann::json& groups) {
+  constexpr size_t kShownNames = 5, kShownNameBytes = 64;
+  std::string names;
+  for (size_t i = 0; i < groups.size() && i < kShownNames; ++i)
+    names += (i ? ", \"" : "\"") + quote_file_text(groups[i]["name"].get<std::string>(), kShownNameBytes) + "\"";
+  if (groups.size() > kShownNames) names += " and " + std::to_string(groups.size() - kShownNames) + " more";
+  return names;
+}
+
 // What every user asks first: size, counts, tolerance, which model and which face layout.
 void print_render(const nlohmann::json& r, uint32_t vertices) {
   std::string attributes;
@@ -204,13 +216,9 @@ void print_render(const nlohmann::json& r, uint32_t vertices) {
   if (r["render_vertices"].get<uint32_t>() != vertices || !attributes.empty())
     std::printf("  render vertices: %u (seam copies share their vertex's position); attributes: %s\n",
                 r["render_vertices"].get<uint32_t>(), attributes.empty() ? "none" : attributes.c_str());
-  if (!r["groups"].empty()) {
-    std::string names;
-    for (const auto& g : r["groups"])
-      names += (names.empty() ? "" : ", ") + ("\"" + printable(g["name"].get<std::string>()) + "\"");
-    std::printf("  %zu face groups (materials %s), %zu images\n", r["groups"].size(), names.c_str(),
+  if (!r["groups"].empty())
+    std::printf("  %zu face groups (materials %s), %zu images\n", r["groups"].size(), group_names_text(r["groups"]).c_str(),
                 r["images"].get<size_t>());
-  }
   if (!r["matrix"].is_null() || r["start_time"].get<double>() != 0 || !r["node_name"].get<std::string>().empty() ||
       !r["mesh_name"].get<std::string>().empty())
     std::printf("  placement: mesh \"%s\", node \"%s\", %s, first frame at %.6g s\n",

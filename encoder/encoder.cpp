@@ -19,6 +19,7 @@
 #include "encoder/curves/report.h"
 #include "encoder/face_order.h"
 #include "encoder/render_attributes.h"
+#include "encoder/render_limits.h"
 #include "encoder/work_meter.h"
 #include "encoder/rate/block_flags.h"
 #include "encoder/rate/fast_low_rank.h"
@@ -341,7 +342,7 @@ double minimum_tolerance(const Animation& anim) {
 bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vector<uint8_t>* out,
                       EncodeReport* report, std::string* error) {
   auto start_time = std::chrono::steady_clock::now();
-  if (!validate_animation(anim, error)) return false;
+  if (!validate_animation(anim, error) || !check_render_limits(anim, error)) return false;
   if (!(opt.tolerance > 0 && opt.tolerance <= 0.5)) return fail(error, "tolerance must be in (0, 0.5]");
   if (opt.curve_points < 2) return fail(error, "target curve length must be at least 2 points");
   if (opt.low_rank < -1 || opt.low_rank > 64) return fail(error, "low-rank setting must be -1 (auto), 0 (off) or 1..64");

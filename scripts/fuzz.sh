@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fuzz with libFuzzer (clang, ASan + UBSan) for a bounded time.
 #   scripts/fuzz.sh [SECONDS=60] [BUILD_DIR=build-fuzz] [TARGET=decoder|reader|both]
-# decoder: the runtime decoder, seeded with the test vectors in format_spec/test_vectors.
+# decoder: the runtime decoder, seeded with the test vectors in format_spec/test_vectors and
+# tests/fuzz/decoder_seeds (REND with groups, PLAC, MATL with an image).
 # reader: the encoder's input readers (OBJ/OFF/PLY text and binary, glTF, PC2, MDD), seeded
 # with tests/fuzz/reader_seeds. both: builds the two targets together, then runs the two
 # fuzzers at the same time for SECONDS each (one core each; libFuzzer runs one thread), each
@@ -30,7 +31,7 @@ mkdir -p "$findings"
 fuzz() {
   local t=$1 corpus="$build/fuzz-corpus-$1" seeds
   case "$t" in
-    decoder) seeds=("$src"/format_spec/test_vectors/*.dcrv) ;;
+    decoder) seeds=("$src"/format_spec/test_vectors/*.dcrv "$src"/tests/fuzz/decoder_seeds/*.dcrv) ;;
     reader) seeds=("$src"/tests/fuzz/reader_seeds/*) ;;
   esac
   mkdir -p "$corpus"

@@ -55,6 +55,9 @@ release_only=(
   '^MotionChoice\.PdeEncodeIsNeverLargerThanNone$' '^MotionChoice\.KeptMotionsEncodeWhereStoredCoefficientsRoundOtherwise$' '^Guarantee\.ChosenGridEncodesLikeTheSameGridGiven$'
   '^Guarantee\.PdeModelKeepsTheGuaranteeAndSmoothInBetweens$' '^LowRankPose\.TurningBodyGetsAPosedModelWithinTolerance$'
   '^Guarantee\.LowerEffortsEncodeTheGridsTheyName$' '^LowRank\.BuiltinSceneWithinToleranceEveryFrame$'
+  # Processor-time bounds, which measure the Release code: the same paths run sanitized in
+  # the other HostileRender tests.
+  '^HostileRender\.ManyFaceGroupsWriteGltfInLinearTime$' '^HostileRender\.IncompressibleImageBytesAreNotSearchedAtLevel19$'
 )
 # Release only, whole files, for time (the sanitized build compiles them too: fit_core_test
 # alone was the largest compile of the sanitized tests): the tests of the offline encoder's

@@ -25,9 +25,11 @@ struct RenderAttribute {
   float lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};
   std::vector<uint16_t> q;  // render_count * components, each < 2^bits
 
+  // In binary64, then rounded: hi - lo of finite binary32 ends can overflow binary32 (UVs
+  // spanning +-3e38), a value between them cannot.
   float value(size_t render_vertex, uint32_t component) const {
-    const uint32_t top = (1u << bits) - 1;
-    return lo[component] + float(q[render_vertex * components + component]) * ((hi[component] - lo[component]) / float(top));
+    const double top = double((1u << bits) - 1), l = lo[component];
+    return float(l + double(q[render_vertex * components + component]) * ((double(hi[component]) - l) / top));
   }
 };
 

@@ -7,22 +7,43 @@
 #include "codec/common/bytes.h"
 #include "codec/common/crc32.h"
 #include "codec/common/fast_residual.h"
+#include "codec/common/render_format.h"
 #include "codec/common/residual.h"
 #include "codec/common/residual_index.h"
 #include "codec/compress/faces_encoder.h"
 #include "codec/compress/low_rank_writer.h"
 #include "codec/compress/render_writer.h"
 #include "codec/compress/zstd_frame_writer.h"
+#include "codec/decompress/container_reader.h"
+#include "codec/decompress/zstd_frame.h"
 
 namespace dcurve {
 namespace {
 
 using namespace container_format;  // what both sides of the format share
 
-// The bytes a section stores: zstd when that is smaller, else the raw bytes.
-std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, bool* compressed) {
+// MATL's level past 64 KiB: its images (PNG, JPEG, KTX2) are mostly compressed already, and
+// level 19 spends minutes on megabytes it cannot shrink; level 3 takes what a raw texture
+// offers. A smaller MATL (the JSON, small images) keeps the section level: it costs nothing.
+constexpr int kImageZstdLevel = 3;
+constexpr size_t kImageLevelBytes = size_t(64) << 10;
+
+int section_level(uint32_t tag, size_t raw_bytes, int level) {
+  return tag == kMaterials && raw_bytes > kImageLevelBytes ? std::min(level, kImageZstdLevel) : level;
+}
+
+// Whether a reader accepts `raw` bytes of section `tag` stored as `stored` (section 15): REND's
+// against the value budget of a file of `stored` bytes, which the whole file can only raise.
+bool expansion_accepted(uint32_t tag, uint64_t raw, uint64_t stored) {
+  return zstd_size_plausible(raw, stored) &&
+         (tag != kRender || render_format::kRenderValuesPerByte * raw <= decoder_value_budget(size_t(stored)));
+}
+
+// The bytes a section stores: zstd when that is smaller and within the expansion a reader
+// accepts (megabytes of zeros shrink past 4096:1), else the raw bytes.
+std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, bool* compressed, uint32_t tag = 0) {
   std::vector<uint8_t> stored = zstd_frame(raw, level);
-  *compressed = !stored.empty() && stored.size() < raw.size();
+  *compressed = !stored.empty() && stored.size() < raw.size() && expansion_accepted(tag, raw.size(), stored.size());
   return *compressed ? stored : raw;
 }
 
@@ -51,7 +72,7 @@ std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteO
 SectionInfo put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
                         int level) {
   bool compressed = false;
-  std::vector<uint8_t> stored = stored_form(raw, level, &compressed);
+  std::vector<uint8_t> stored = stored_form(raw, level, &compressed, tag);
   const size_t header_at = out.size();
   out.u32(tag);
   out.u8(uint8_t((required ? kSectionRequired : 0) | (compressed ? kSectionZstd : 0)));
@@ -171,7 +192,7 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   // Positions decode without FACE, REND and PLAC: a reader that skips them is still right.
   for (const auto& [tag, raw] : sections) {
     SectionInfo info = put_section(body, tag, tag != kFaces && tag != kRender && tag != kPlacement && tag != kMaterials,
-                                   raw, options.zstd_level);
+                                   raw, section_level(tag, raw.size(), options.zstd_level));
     info.offset += kHeaderBytes;
     if (infos) infos->push_back(std::move(info));
   }

@@ -7,6 +7,7 @@
 #include "codec/common/residual_walk.h"
 #include "codec/compress/residual_encoder.h"
 #include "codec/compress/zstd_frame_writer.h"
+#include "codec/decompress/zstd_frame.h"
 
 namespace dcurve {
 
@@ -66,10 +67,11 @@ uint32_t append_frame_tokens(const int64_t* r, uint32_t V, ByteWriter* ops, Byte
 }
 
 namespace {
-// A stream as its coding byte, sizes and bytes: zstd when that is smaller.
+// A stream as its coding byte, sizes and bytes: zstd when that is smaller and within the
+// expansion the reader accepts.
 void write_stream(const std::vector<uint8_t>& raw, ByteWriter* w) {
   const std::vector<uint8_t> packed = zstd_frame(raw, 19);
-  if (!packed.empty() && packed.size() + 2 < raw.size()) {
+  if (!packed.empty() && packed.size() + 2 < raw.size() && zstd_size_plausible(raw.size(), packed.size())) {
     w->u8(kStreamZstd);
     w->varint(raw.size());
     w->varint(packed.size());

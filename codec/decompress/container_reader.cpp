@@ -9,6 +9,7 @@
 #include "codec/common/crc32.h"
 #include "codec/common/fast_residual.h"
 #include "codec/common/error.h"
+#include "codec/common/render_format.h"
 #include "codec/common/residual.h"
 #include "codec/common/validate.h"
 #include "codec/decompress/faces_decoder.h"
@@ -232,7 +233,9 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
       model->curves = singleton_curves(model->meta.vertex_count);
 
     if (flags & kSectionZstd) {
-      if (raw_size > kMaxRawSection || !zstd_size_plausible(raw_size, stored))
+      const uint64_t budget = decoder_value_budget(size_t(std::min<uint64_t>(file_bytes, SIZE_MAX)));
+      if (raw_size > kMaxRawSection || !zstd_size_plausible(raw_size, stored) ||
+          (tag == kRender && render_format::kRenderValuesPerByte * raw_size > budget))
         return fail(error, "section " + name + " claims an implausible size");
       if (!decompress_exactly(p, size_t(stored), raw_size, &raw))
         return fail(error, "section " + name + " does not decompress");

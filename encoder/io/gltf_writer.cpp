@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "codec/common/error.h"
+#include "encoder/io/json_depth.h"
 
 namespace dcurve {
 namespace {
@@ -19,9 +20,18 @@ constexpr uint64_t kMaxGltfBytes = uint64_t(1) << 30;
 constexpr double kLongestNumber = -2.2250738585072014e-308;
 constexpr size_t kFlushBytes = size_t(3) << 18;  // a multiple of 3: base64 flushes whole groups
 constexpr char kDataUri[] = "data:application/octet-stream;base64,";
-// Stands for the morph targets' text in the JSON tree until it is spliced in.
-constexpr char kTargetsMark[] = "dcurve-morph-targets";
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963, kFloat = 5126, kUnsignedInt = 5125;
+
+// JSON text with bytes that are not UTF-8 (names from the file) as U+FFFD: a glTF is UTF-8,
+// and nlohmann's dump would throw on them.
+std::string json_text(const Json& j) { return j.dump(-1, ' ', false, Json::error_handler_t::replace); }
+
+// `object`'s text without its closing brace, so members can follow it.
+std::string open_object(const Json& object) {
+  std::string text = json_text(object);
+  text.pop_back();
+  return text;
+}
 
 uint64_t base64_bytes(uint64_t bytes) { return (bytes + 2) / 3 * 4; }
 uint64_t padded4(uint64_t n) { return (n + 3) & ~uint64_t(3); }
@@ -104,6 +114,8 @@ uint64_t images_bytes(const GltfScene& scene) {
 // The materials and textures as stored, each image a bufferView of the buffer (after the
 // static attributes, 4-byte aligned).
 void add_materials(const GltfScene& scene, uint64_t offset, Json* doc, Json* views) {
+  // Too deep to copy and dump without overflowing the stack: fits() refuses the output.
+  if (!check_json_depth(scene.materials_json.data(), scene.materials_json.size(), kMaxJsonDepth, nullptr)) return;
   const Json m = Json::parse(scene.materials_json, nullptr, false);
   if (!m.is_object()) return;
   for (const char* key : {"extensionsUsed", "extensionsRequired", "materials", "textures", "samplers"})
@@ -120,13 +132,14 @@ void add_materials(const GltfScene& scene, uint64_t offset, Json* doc, Json* vie
   if (!out.empty()) (*doc)["images"] = out;
 }
 
-// One primitive per face group (its slice of the index buffer, its material), or `primitive`
-// alone without groups.
+// One primitive per face group with triangles (its slice of the index buffer, its material),
+// or `primitive` alone without groups. An empty group (consecutive `usemtl` lines) gets none:
+// an indices accessor of count 0 is invalid glTF.
 Json group_primitives(const GltfScene& scene, const Json& primitive, int index_view, size_t materials, Json* accessors) {
-  if (scene.group_faces.empty()) return Json::array({primitive});
   Json out = Json::array();
   uint64_t first = 0;
   for (size_t g = 0; g < scene.group_faces.size(); ++g) {
+    if (scene.group_faces[g] == 0) continue;
     Json p = primitive;
     accessors->push_back(accessor(index_view, 12 * first, 3 * uint64_t(scene.group_faces[g]), "SCALAR", kUnsignedInt));
     p["indices"] = accessors->size() - 1;
@@ -134,7 +147,17 @@ Json group_primitives(const GltfScene& scene, const Json& primitive, int index_v
     out.push_back(p);
     first += scene.group_faces[g];
   }
-  return out;
+  return out.empty() ? Json::array({primitive}) : out;
+}
+
+// The mesh as text, each primitive listing the morph targets `targets` (text; none when empty).
+std::string mesh_text(const Json& mesh, const Json& primitives, const std::string& targets) {
+  std::string text = open_object(mesh) + ",\"primitives\":[";
+  for (size_t i = 0; i < primitives.size(); ++i) {
+    if (i > 0) text += ',';
+    text += targets.empty() ? json_text(primitives[i]) : open_object(primitives[i]) + ",\"targets\":[" + targets + "]}";
+  }
+  return text + "]}";
 }
 
 // The node showing the mesh: the input's name and world transform.
@@ -210,7 +233,7 @@ void add_weights_animation(const GltfLayout& at, uint32_t frame_count, float fir
 }  // namespace
 
 // Accessors and views in the buffer's order: indices, static attributes, frame 0, the targets,
-// times, weights (the targets' accessors last, spliced in as text).
+// times, weights (the targets' accessors last, joined in as text).
 std::string GltfWriter::json(bool placeholders) const {
   const GltfLayout at(vertex_count_, faces_.size(), frame_count_, static_bytes(), scene_.normals);
   const uint64_t position_bytes = 12 * uint64_t(vertex_count_);
@@ -233,9 +256,8 @@ std::string GltfWriter::json(bool placeholders) const {
     primitive["attributes"]["NORMAL"] = accessors.size() - 1;
   }
   Json mesh = {{"name", scene_.placement.mesh_name.empty() ? "dcurve" : scene_.placement.mesh_name}};
-  if (frame_count_ > 1) primitive["targets"] = Json::array({kTargetsMark});
   const size_t materials = doc.contains("materials") ? doc["materials"].size() : 0;
-  mesh["primitives"] = group_primitives(scene_, primitive, faces_.empty() ? -1 : 0, materials, &accessors);
+  const Json primitives = group_primitives(scene_, primitive, faces_.empty() ? -1 : 0, materials, &accessors);
   TargetText targets;
   if (frame_count_ > 1) {
     add_weights_animation(at, frame_count_, key_time(0), key_time(frame_count_ - 1), placeholders, &doc, &mesh, &views,
@@ -243,24 +265,17 @@ std::string GltfWriter::json(bool placeholders) const {
     // The targets' accessors last: their indices follow from the count of those before.
     views.push_back(view(at.targets, at.times - at.targets, kArrayBuffer));
     targets = target_text(int(views.size() - 1), accessors.size(), placeholders);
-    accessors.push_back(kTargetsMark);
   }
   doc["bufferViews"] = views;
-  doc["accessors"] = accessors;
-  doc["meshes"] = Json::array({mesh});
-  doc["nodes"] = Json::array({mesh_node(scene_.placement)});
-  doc["scenes"] = Json::array({{{"nodes", {0}}}});
-  doc["scene"] = 0;
-  if (binary_) doc["buffers"] = Json::array({{{"byteLength", at.end}}});
-  std::string text = doc.dump();
-  if (frame_count_ > 1) {  // located by their keys: a name from the input may spell the mark
-    const std::string mark = Json(kTargetsMark).dump(), in_primitive = "\"targets\":[" + mark + "]";
-    text.replace(text.find(mark, text.find("\"accessors\":[")), mark.size(), targets.accessors);
-    const std::string list = "\"targets\":[" + targets.targets + "]";
-    for (size_t at = text.find(in_primitive); at != std::string::npos; at = text.find(in_primitive, at + list.size()))
-      text.replace(at, in_primitive.size(), list);
-  }
-  return text;
+  Json tail = {{"nodes", Json::array({mesh_node(scene_.placement)})}, {"scenes", Json::array({{{"nodes", {0}}}})}, {"scene", 0}};
+  if (binary_) tail["buffers"] = Json::array({{{"byteLength", at.end}}});
+  // Joined as text in one pass, the targets' text at known places: nothing a material or
+  // name holds is searched for, and the time stays linear in the primitives.
+  std::string accessor_text = json_text(accessors);
+  accessor_text.pop_back();
+  if (!targets.accessors.empty()) accessor_text += "," + targets.accessors;
+  return open_object(doc) + ",\"accessors\":" + accessor_text + "],\"meshes\":[" +
+         mesh_text(mesh, primitives, targets.targets) + "]," + json_text(tail).substr(1);
 }
 
 float GltfWriter::key_time(uint32_t frame) const {
@@ -289,6 +304,9 @@ bool GltfWriter::check_size(uint32_t vertex_count, size_t face_ids, uint32_t fra
 }
 
 bool GltfWriter::fits(std::string* error) const {
+  std::string deep;
+  if (!check_json_depth(scene_.materials_json.data(), scene_.materials_json.size(), kMaxJsonDepth, &deep))
+    return fail(error, "its materials (MATL): " + deep);
   const uint64_t bytes = expected_bytes();
   if (bytes > kMaxGltfBytes)
     return fail(error, std::to_string(frame_count_) + " frames of " + std::to_string(vertex_count_) + " vertices need " +

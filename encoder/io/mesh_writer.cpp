@@ -1,6 +1,7 @@
 #include "encoder/io/mesh_writer.h"
 
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -55,6 +56,23 @@ void ply_bytes(const float* xyz, uint32_t vertex_count, const std::vector<uint32
   }
 }
 
+// A name (usemtl, mtllib) kept on its line: OBJ has no escapes, and a newline in a name would
+// start records of its own (vertices that shift every face index), so each control character
+// is written as \xNN.
+std::string obj_name(const std::string& name) {
+  std::string out;
+  for (const unsigned char c : name) {
+    if (c >= 0x20 && c != 0x7f) {
+      out.push_back(char(c));
+      continue;
+    }
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "\\x%02x", c);
+    out += buf;
+  }
+  return out;
+}
+
 void append_corner(std::string* out, uint32_t vertex, uint32_t render, bool uv, bool normal) {
   out->append(std::to_string(vertex + 1));
   if (uv || normal) out->push_back('/');
@@ -67,7 +85,7 @@ void append_corner(std::string* out, uint32_t vertex, uint32_t render, bool uv, 
 void obj_render_bytes(const float* xyz, uint32_t vertex_count, const ObjRender& r, const float* normals,
                       std::string* bytes) {
   bytes->clear();
-  if (!r.material_library.empty()) bytes->append("mtllib " + r.material_library + "\n");
+  if (!r.material_library.empty()) bytes->append("mtllib " + obj_name(r.material_library) + "\n");
   append_vertices(bytes, "v ", xyz, vertex_count);
   for (size_t i = 0; i < r.uv.size(); i += 2) {
     bytes->append("vt ");
@@ -81,7 +99,7 @@ void obj_render_bytes(const float* xyz, uint32_t vertex_count, const ObjRender& 
   const std::vector<uint32_t>& groups = r.group_faces.empty() ? one_group : r.group_faces;
   size_t t = 0;
   for (size_t g = 0; g < groups.size(); ++g) {
-    if (g < r.group_names.size() && !r.group_names[g].empty()) bytes->append("usemtl " + r.group_names[g] + "\n");
+    if (g < r.group_names.size() && !r.group_names[g].empty()) bytes->append("usemtl " + obj_name(r.group_names[g]) + "\n");
     for (uint32_t end = uint32_t(t) + groups[g]; t < end; ++t) {
       bytes->append("f");
       for (int k = 0; k < 3; ++k) {

@@ -26,6 +26,7 @@ struct ObjRender {
 
 // An OBJ with `mtllib`, one `v` per vertex (vertex i stays vertex i), a `vt` and (with
 // `normals`, one per render vertex) a `vn` per render vertex, and faces `v/vt/vn` by group.
+// Control characters in the names are written as \xNN, so each name stays on its line.
 void obj_render_bytes(const float* xyz, uint32_t vertex_count, const ObjRender& render, const float* normals,
                       std::string* bytes);
 

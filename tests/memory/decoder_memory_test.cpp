@@ -8,8 +8,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <new>
+#include <random>
+#include <string>
 #include <vector>
 
+#include "codec/compress/zstd_frame_writer.h"
+#include "codec/decompress/container_reader.h"
+#include "tests/container_bytes.h"
 #include "decoder/dcurve.hpp"
 #include "encoder/encoder.h"
 #include "encoder/io/files.h"
@@ -167,6 +172,65 @@ TEST(DecoderMemory, PlaybackStaysWithinABoundThatDoesNotGrowWithTheFrameCount) {
 TEST(DecoderMemory, FastPlaybackHoldsFramesNotChunksAndDoesNotGrow) {
   const size_t V = kSide * kSide;
   expect_bounded_playback(Profile::Fast, 84 * V + 256 * V + 65536, "fast");
+}
+
+
+// A 4 x 4 sheet with render vertices, whose REND section is replaced by one of `groups` face
+// groups under zstd: 2 bytes each (no material, an empty name), read into 48 bytes each. The
+// first two groups' names, 1424 random bytes, keep the frame within the 4096:1 a reader accepts.
+std::vector<uint8_t> file_with_groups(uint64_t groups) {
+  Animation a;
+  a.vertex_count = 16;
+  a.faces = {0, 1, 4, 1, 5, 4};
+  for (int f = 0; f < 2; ++f) {
+    a.frames.emplace_back();
+    for (uint32_t v = 0; v < 16; ++v) a.frames.back().insert(a.frames.back().end(), {float(v % 4), float(v / 4), 0.1f * f * v});
+  }
+  for (uint32_t v = 0; v < 16; ++v) a.render.source.push_back(v);
+  a.render.corners = a.faces;
+  a.render.groups = {{-1, "g"}};
+  a.render.face_group = {0, 0};
+  std::vector<uint8_t> bytes;
+  std::string err;
+  EXPECT_TRUE(encode_animation(a, EncodeOptions(), &bytes, nullptr, &err)) << err;
+  ByteWriter rend;
+  rend.u8(1);
+  rend.varint(16);
+  for (int i = 0; i < 16 + 6; ++i) rend.varint(0);  // each vertex new, each corner its first copy
+  rend.u8(0);                                          // no attributes
+  rend.varint(groups);
+  std::mt19937 random(11);
+  std::string name(1424, ' ');
+  for (char& c : name) c = char(random());
+  for (uint64_t g = 0; g < groups; ++g) {
+    rend.varint(0);
+    rend.str(g == 0 ? name.substr(0, 1024) : g == 1 ? name.substr(1024) : "");
+  }
+  rend.varint(0);
+  rend.varint(0);
+  testing::RawFile f = testing::split_file(bytes);
+  for (testing::RawSection& s : f.sections)
+    if (s.tag == "REND") s = {"REND", 2, zstd_frame(rend.data(), 19), rend.size()};
+  return testing::assemble(f);
+}
+
+// Reading REND stays within the value budget of section 15 (4 bytes per value of
+// max(2^23, 8192 * file bytes)): a file of 4.2 million raw REND bytes in 1.7 KB (which would
+// take 100 MB) is refused before they are decompressed, one of 0.8 million is read within it.
+TEST(DecoderMemory, RenderSectionsAreReadWithinTheValueBudget) {
+  for (uint64_t groups : {2100000, 400000}) {
+    const std::vector<uint8_t> file = file_with_groups(groups);
+    const size_t budget = 4 * decoder_value_budget(file.size());
+    const size_t before = live_bytes;
+    peak_bytes = before;
+    std::string err;
+    const bool opened = Decoder::open_memory(file.data(), file.size(), &err) != nullptr;
+    const size_t peak = peak_bytes - before;
+    EXPECT_LE(peak, budget) << groups << " groups in " << file.size() << " bytes";
+    EXPECT_EQ(opened, groups == 400000) << err;
+    std::printf("%llu groups in %zu bytes: %s, peak %zu bytes, budget %zu\n", (unsigned long long)groups, file.size(),
+                opened ? "read" : err.c_str(), peak, budget);
+  }
 }
 
 }  // namespace
