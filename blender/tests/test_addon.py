@@ -7,6 +7,7 @@ DIR holds io_scene_dcurve (with the compiled module, as cmake --install ships it
    back with import_scene.dcurve: at scene frame frame_start + f the imported object's
    evaluated mesh is frame f within the tolerance (max |x_hat - x| / L, L the rest pose's
    bounding-box diagonal); faces, UVs, materials, frame range and rate come back.
+   A Wave modifier's grid exported in local space comes back with its object transform.
 2. A mesh whose vertex count changes over time (a Build modifier) is refused with a message.
 3. A .dcrv from `dcurve encode` of a corpus-ext clip imports as its decode, frame by frame.
 4. A damaged file is refused with a message; Blender goes on.
@@ -129,6 +130,26 @@ def test_cloth_round_trip(tmp):
     assert imported.data.uv_layers.active is not None
     assert uvs_match(sheet.data, imported.data)
 
+def test_local_space_keeps_the_object_transform(tmp):
+    """A Wave modifier on a rotated, moved grid, exported in the object's space: the import
+    puts the recorded transform back, so the world positions match."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 8
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=8, y_subdivisions=8, location=(3, -1, 2), rotation=(0.4, 0, 1.1))
+    grid = bpy.context.active_object
+    grid.modifiers.new("Wave", "WAVE").height = 0.3
+    original = imported_frames(grid, 1, 8)
+    path = tmp / "local.dcrv"
+    assert bpy.ops.export_scene.dcurve(filepath=str(path), space="LOCAL") == {"FINISHED"}
+    assert bpy.ops.import_scene.dcurve(filepath=str(path)) == {"FINISHED"}
+    imported = bpy.context.active_object
+    assert np.allclose(np.array(imported.matrix_world), np.array(grid.matrix_world), atol=1e-6)
+    error = max_relative_error(imported_frames(imported, 1, 8), original)
+    assert error <= 1e-3, "local-space frames off by %g of L" % error
+    assert max_relative_error(original, [original[0]] * 8) > 0.01, "the wave did not move the grid"
+
+
 def test_changing_vertex_count_is_refused(tmp):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     bpy.context.scene.frame_start, bpy.context.scene.frame_end = 1, 10
@@ -188,7 +209,8 @@ def main():
     io_scene_dcurve.register()
     with tempfile.TemporaryDirectory() as scratch:
         tmp = pathlib.Path(scratch)
-        for test in (test_cloth_round_trip, test_changing_vertex_count_is_refused, test_damaged_file_is_refused):
+        for test in (test_cloth_round_trip, test_local_space_keeps_the_object_transform,
+                     test_changing_vertex_count_is_refused, test_damaged_file_is_refused):
             start = time.monotonic()
             test(tmp)
             print("%s passed (%.1f s)" % (test.__name__, time.monotonic() - start))

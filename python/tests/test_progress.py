@@ -45,6 +45,7 @@ def test_other_threads_run_during_an_encode(corpus_arrays):
         time.sleep(0.005)
     worker.join()
     elapsed = time.monotonic() - start
-    assert elapsed > 0.1, "the encode was too short to tell"
-    # With the GIL held for the encode, this loop would not run until it ended.
-    assert len(ticks) >= 0.3 * elapsed / 0.005
+    assert elapsed > 0.2, "the encode was too short to tell"
+    # With the GIL held for the encode, this loop would not run until it ended (a tick or two);
+    # released, it ticks every 5 ms, or every few tens of ms on a loaded machine.
+    assert len(ticks) >= 10
