@@ -2,76 +2,28 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <new>
+#include <memory>
 
 #include "cli/commands.h"
-#include "cli/face_order_text.h"
+#include "cli/encode_job.h"
 #include "cli/messages.h"
 #include "cli/number_range.h"
-#include "cli/output_path.h"
 #include "codec/common/inbetween.h"
 #include "codec/common/render_mesh.h"
-#include "encoder/curves/report_json.h"
-#include "encoder/encoder.h"
 #include "corpus/input.h"
-#include "encoder/io/files.h"
+#include "encoder/encoder.h"
 #include "encoder/io/frame_times.h"
-#include "encoder/io/gltf_references.h"
-#include "encoder/io/output_file.h"
-#include "corpus/sim/scene.h"
 
 namespace dcurve::cli {
 namespace {
 
-// The files an encode of `input` reads: a folder's frames, or the input file (glTF, point
-// cache, scene) with a glTF's buffers and images, a point cache's mesh or a scene's surface.
-std::vector<std::string> input_files(const std::string& input, const std::string& rest_mesh) {
-  std::vector<std::string> files;
-  std::string ignored;  // an unreadable input is reported when it is loaded
-  std::error_code ec;
-  if (std::filesystem::is_directory(input, ec)) {
-    if (!list_frame_files(input, &files, &ignored)) files.clear();
-    return files;
-  }
-  files = gltf_referenced_files(input);
-  files.push_back(input);
-  if (!rest_mesh.empty()) files.push_back(rest_mesh);
-  Scene scene;
-  if (load_scene_file(input, &scene, &ignored) && !scene.mesh_file.empty()) files.push_back(scene.mesh_file);
-  return files;
-}
-
-// Refuses, before a long encode, an output that is one of the inputs, may not be replaced
-// (cli/output_path) or is not a .dcrv file.
-bool check_encode_output(const std::string& input, const std::string& rest_mesh, const std::string& output, bool force,
-                         std::string* error) {
-  OutputKind kind;
-  return check_output_file(output, force, input_files(input, rest_mesh), error) &&
-         output_kind(output, {OutputKind::Dcrv}, &kind, error);
-}
-
-// Reads and encodes `input`; an allocation that fails anywhere (worker threads included,
-// encoder/parallel.h) is an error naming the input, not an abort.
-bool read_and_encode(const std::string& input, const InputOptions& io, EncodeOptions eo, const Messages& msg,
-                     Animation* anim, std::vector<uint8_t>* bytes, EncodeReport* rep, std::string* err) {
-  const char* stage = "reading it";
-  try {
-    if (!load_animation_input(input, io, msg.progress(input_stage_label(input)), anim, err)) return false;
-    msg.detail("read " + std::to_string(anim->frames.size()) + " frames of " + std::to_string(anim->vertex_count) +
-               " vertices, " + std::to_string(anim->faces.size() / 3) + " triangles, " +
-               std::to_string(anim->frame_rate) + " fps from " + input);
-    for (const std::string& note : anim->notes) msg.note(input + ": " + note);
-    if (!eo.connectivity && !anim->render.empty())
-      msg.note(input + ": --no-connectivity: the file keeps no render vertices (UVs, seams), which follow the faces");
-    stage = "encoding it";
-    eo.progress = msg.progress("encode");
-    if (encode_animation(*anim, eo, bytes, rep, err)) return true;
-    *err = input + ": " + *err;
-  } catch (const std::bad_alloc&) {
-    *err = input + ": out of memory while " + stage + " (--max-memory bounds what the readers allocate)";
-  }
-  return false;
+// The job's messages as the subcommand prints them (-q, -v, progress bars or lines).
+EncodeListener listener_of(const std::shared_ptr<Messages>& msg) {
+  EncodeListener l;
+  l.note = [msg](const std::string& m) { msg->note(m); };
+  l.detail = [msg](const std::string& m) { msg->detail(m); };
+  l.progress = [msg](const std::string& stage) { return msg->progress(stage); };
+  return l;
 }
 
 }  // namespace
@@ -182,7 +134,6 @@ Action add_encode(CLI::App& app) {
   app.add_flag("--json", o->json, "Print one JSON object with the encode summary on stdout");
   msg->add_flags(app);
   return [o, msg]() {
-    Animation anim;
     std::string err;
     if (!std::isfinite(o->input_options.fps)) {  // CLI11's range checks let "nan" through
       std::fprintf(stderr, "dcurve encode: --fps must be a number\n");
@@ -192,8 +143,12 @@ Action add_encode(CLI::App& app) {
       std::fprintf(stderr, "dcurve encode: --reorder-faces (the default, deprecated) contradicts --keep-face-order\n");
       return 2;
     }
-    if (!check_encode_output(o->input, o->input_options.rest_mesh, o->output, o->force, &err)) return msg->error(err);
-    EncodeOptions eo;
+    EncodeFileJob job;
+    job.input = o->input;
+    job.output = o->output;
+    job.input_options = o->input_options;
+    job.force = o->force;
+    EncodeOptions& eo = job.options;
     eo.tolerance = o->tolerance;
     eo.connectivity = !o->no_connectivity;
     eo.exact_face_order = o->keep_face_order;
@@ -213,44 +168,9 @@ Action add_encode(CLI::App& app) {
     Inbetween forced;
     eo.inbetween = inbetween_from_name(o->inbetween.c_str(), &forced) ? int(forced) : -1;
     eo.curve_points = o->curve_points;
-    std::vector<uint8_t> bytes;
     EncodeReport rep;
-    if (!read_and_encode(o->input, o->input_options, eo, *msg, &anim, &bytes, &rep, &err)) return msg->error(err);
-    OutputFile out;
-    if (!out.open(o->output, o->force, &err) || !out.write(bytes.data(), bytes.size(), &err) || !out.commit(&err))
-      return msg->error(err);
-    if (eo.connectivity)
-      msg->detail("faces: " + face_order_text(anim.faces.size() / 3, rep.faces_in_coder_order, rep.connectivity_bytes,
-                                              rep.coder_order_connectivity_bytes));
-    nlohmann::json j = {{"input", o->input},
-                        {"output", o->output},
-                        {"tolerance", o->tolerance},
-                        {"bytes", rep.bytes},
-                        {"motion_bytes", rep.motion_bytes},
-                        {"connectivity_bytes", rep.connectivity_bytes},
-                        {"face_order", eo.connectivity ? face_order_name(rep.faces_in_coder_order) : "none"},
-                        {"coder_order_connectivity_bytes", rep.coder_order_connectivity_bytes},
-                        {"vertices", rep.vertices},
-                        {"frames", rep.frames},
-                        {"segments", rep.segments},
-                        {"max_error", rep.error.max_error},
-                        {"rmse", rep.error.rmse},
-                        {"kg_error_pct", rep.error.kg_error_pct},
-                        {"bpvf", rep.bpvf},
-                        {"encode_seconds", rep.encode_seconds},
-                        {"model", o->model},
-                        {"model_bytes", rep.model_bytes},
-                        {"motions_fitted", rep.motions_fitted},
-                        {"motions_kept", rep.motions_kept},
-                        {"low_rank_components", rep.low_rank_components},
-                        {"grid_refinement", rep.grid_refinement},
-                        {"chunk_frames", rep.chunk_frames},
-                        {"inbetween", inbetween_name(rep.inbetween)},
-                        {"effort", o->effort},
-                        {"profile", o->profile},
-                        {"low_rank_bytes", rep.low_rank_bytes},
-                        {"curve_fallback", rep.curve_fallback}};
-    j.update(curve_report_json(rep.curves));
+    if (!run_encode_file(job, listener_of(msg), &rep, &err)) return msg->error(err);
+    const nlohmann::json j = encode_summary_json(job, rep);
     if (o->json) {  // asked for explicitly: printed even with -q
       std::printf("%s\n", j.dump().c_str());
     } else if (!msg->quiet()) {

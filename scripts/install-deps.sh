@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian packages dcurve builds against, then Node and the npm packages of the
-# interoperability tests (tests/interop: glTF-Transform and the Khronos glTF validator) and of
+# Installs the Debian packages dcurve builds against (the Python module's too: pybind11, numpy
+# and pytest for Debian's python3, Blender 3.4 for the add-on's test), then Node and the npm
+# packages of the interoperability tests (tests/interop: glTF-Transform and the Khronos glTF validator) and of
 # the web decoder (web/: three, fzstd, playwright-core; Emscripten and Chromium from Debian).
 # Idempotent: does nothing when all are present. Quiet on success; on failure prints the
 # installer's output and exits non-zero.
@@ -12,6 +13,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
   libmeshoptimizer-dev libhtscodecs-dev clang libclang-rt-14-dev libtinygltf-dev
   emscripten chromium
+  python3-dev pybind11-dev python3-numpy python3-pytest blender
 )
 # Node from Debian unless a node and npm are already on the PATH (e.g. NodeSource's nodejs,
 # which bundles npm and conflicts with Debian's npm package).

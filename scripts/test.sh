@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The test command: installs dependencies, builds and installs with the README's own commands
-# (Release, no unity batches), runs every test with ctest, builds the decoder-only variant,
+# (Release, no unity batches), runs every test with ctest (the Python module's pytest and the
+# Blender add-on's headless test among them), checks the installed add-on in Blender, builds the decoder-only variant,
 # builds the WebAssembly decoder and runs its Node and headless-Chromium tests (web/test.sh),
 # then does the same under AddressSanitizer + UndefinedBehaviorSanitizer (clang), then fuzzes the
 # decoder and the input readers side by side for a bounded time each when the fuzz script
@@ -31,6 +32,14 @@ if grep -qs '^CMAKE_UNITY_BUILD:BOOL=ON' build/CMakeCache.txt; then cmake -S . -
 HOME="$scratch" CMAKE_GENERATOR=Ninja bash -euo pipefail -c "$readme_build"
 [ -x "$scratch/.local/bin/dcurve" ] || { echo "test.sh: the README's install put no bin/dcurve in its prefix" >&2; exit 1; }
 ctest --test-dir build --output-on-failure -j"$jobs"
+
+phase "The installed Blender add-on"
+# ctest ran the module's and the add-on's tests on the build tree (python_module,
+# blender_addon) and the README's block imported the installed module; this installs the
+# add-on's zip as a user would, in headless Blender, and checks it loads the module it ships.
+HOME="$scratch" blender -b --factory-startup --python-exit-code 1 --python blender/tests/check_install.py -- \
+  "$scratch/.local/share/dcurve/blender/io_scene_dcurve.zip" >"$scratch/blender-install.log" 2>&1 ||
+  { cat "$scratch/blender-install.log" >&2; echo "test.sh: the installed add-on does not load" >&2; exit 1; }
 
 phase "Decoder-only build (-DDCURVE_DECODER_ONLY=ON)"
 # Unity batches: this checks the configuration (zstd alone, no encoder); the same sources
