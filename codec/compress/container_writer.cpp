@@ -39,22 +39,39 @@ bool expansion_accepted(uint32_t tag, uint64_t raw, uint64_t stored) {
          (tag != kRender || render_format::kRenderValuesPerByte * raw <= decoder_value_budget(size_t(stored)));
 }
 
-// The bytes a section stores: zstd when that is smaller and within the expansion a reader
-// accepts (megabytes of zeros shrink past 4096:1), else the raw bytes.
-std::vector<uint8_t> stored_form(const std::vector<uint8_t>& raw, int level, bool* compressed, uint32_t tag = 0) {
+// Whether a large section's first MiB shrinks by 1 % or more: a texture that is already PNG or
+// JPEG does not, and compressing all of it would hold a second copy of it to throw away.
+bool sample_compresses(const std::vector<uint8_t>& raw, int level) {
+  constexpr size_t kSample = size_t(1) << 20;
+  if (raw.size() <= 4 * kSample) return true;
+  const std::vector<uint8_t> head(raw.begin(), raw.begin() + kSample);
+  const std::vector<uint8_t> z = zstd_frame(head, level);
+  return !z.empty() && z.size() < kSample - kSample / 100;
+}
+
+// The zstd frame a section stores when that is smaller than `raw` and within the expansion a
+// reader accepts (megabytes of zeros shrink past 4096:1); empty when the raw bytes are stored
+// (no copy of them: a section can be a texture of hundreds of megabytes).
+std::vector<uint8_t> compressed_form(const std::vector<uint8_t>& raw, int level, uint32_t tag = 0) {
+  if (!sample_compresses(raw, level)) return {};
   std::vector<uint8_t> stored = zstd_frame(raw, level);
-  *compressed = !stored.empty() && stored.size() < raw.size() && expansion_accepted(tag, raw.size(), stored.size());
-  return *compressed ? stored : raw;
+  if (stored.empty() || stored.size() >= raw.size() || !expansion_accepted(tag, raw.size(), stored.size())) return {};
+  return stored;
+}
+
+size_t stored_size(const std::vector<uint8_t>& raw, int level) {
+  const std::vector<uint8_t> c = compressed_form(raw, level);
+  return c.empty() ? raw.size() : c.size();
 }
 
 std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
   using Layout = WriteOptions::FaceLayout;
   std::vector<uint8_t> best = encode_faces(faces, FaceOrder::Exact);
   if (options.face_layout == Layout::Exact) return best;
-  bool unused;
-  auto stored_size = [&](const std::vector<uint8_t>& raw) { return stored_form(raw, options.zstd_level, &unused).size(); };
+  const int level = options.zstd_level;
   auto consider = [&](std::vector<uint8_t> raw, Layout layout) {
-    if (options.face_layout == layout || (options.face_layout == Layout::Smallest && stored_size(raw) < stored_size(best)))
+    if (options.face_layout == layout ||
+        (options.face_layout == Layout::Smallest && stored_size(raw, level) < stored_size(best, level)))
       best = std::move(raw);
   };
   // Compact reproduces any list exactly (encode_faces falls back to Exact beyond its bound).
@@ -71,8 +88,9 @@ std::vector<uint8_t> face_bytes(const std::vector<uint32_t>& faces, const WriteO
 // compressed, CRC; then the stored bytes. Returns what it wrote (offsets within `out`).
 SectionInfo put_section(ByteWriter& out, uint32_t tag, bool required, const std::vector<uint8_t>& raw,
                         int level) {
-  bool compressed = false;
-  std::vector<uint8_t> stored = stored_form(raw, level, &compressed, tag);
+  const std::vector<uint8_t> zstd = compressed_form(raw, level, tag);
+  const bool compressed = !zstd.empty();
+  const std::vector<uint8_t>& stored = compressed ? zstd : raw;
   const size_t header_at = out.size();
   out.u32(tag);
   out.u8(uint8_t((required ? kSectionRequired : 0) | (compressed ? kSectionZstd : 0)));
@@ -167,6 +185,55 @@ size_t motion_record_size(const CurveMotion& m) {
   return w.data().size();
 }
 
+namespace {
+
+// The file header: magic, version, flags, section count, where the sections end, its CRC.
+ByteWriter file_header(const Model& model, bool render, uint32_t section_count, uint64_t sections_end) {
+  ByteWriter out;
+  out.bytes(kMagic, 4);
+  const bool fast = !model.residual.payload.empty() && model.residual.payload[0] == fast_residual::kPayloadVersion;
+  out.u16(fast ? kFastFormatVersionMajor : kFormatVersionMajor);
+  const bool scene = render || !model.placement.empty();
+  out.u16(fast ? (model.low_rank.components > 0 ? kFastPackedFormatVersionMinor
+                  : scene                       ? kFastRenderFormatVersionMinor
+                                                : kFastFormatVersionMinor)
+               : (scene ? kRenderFormatVersionMinor : kFormatVersionMinor));
+  out.u32(kFileFlagZeroBlocks | (model.meta.inbetween != Inbetween::Linear ? kFileFlagInbetween : 0));
+  out.u32(section_count);
+  out.u64(sections_end);
+  out.u32(crc32c(out.data().data(), kHeaderBytes - 4));
+  return out;
+}
+
+// The file in one buffer, reserved once: the header (written last, in front), each section
+// (its raw bytes freed once stored), then the chunks. No section is held twice.
+std::vector<uint8_t> assemble_container(const Model& model, bool render, size_t index_bytes, const WriteOptions& options,
+                                        std::vector<std::pair<uint32_t, std::vector<uint8_t>>>* sections,
+                                        std::vector<SectionInfo>* infos) {
+  const size_t chunk_bytes = model.residual.step > 0 ? model.residual.payload.size() - index_bytes : 0;
+  size_t total = kHeaderBytes + chunk_bytes;
+  for (const auto& section : *sections) total += section.second.size() + 32;  // 32: a section header's most
+  ByteWriter out;
+  out.data().reserve(total);
+  out.data().resize(kHeaderBytes);
+  if (infos) infos->clear();
+  // Positions decode without FACE, REND and PLAC: a reader that skips them is still right.
+  for (auto& [tag, raw] : *sections) {
+    SectionInfo info = put_section(out, tag, tag != kFaces && tag != kRender && tag != kPlacement && tag != kMaterials,
+                                   raw, section_level(tag, raw.size(), options.zstd_level));
+    std::vector<uint8_t>().swap(raw);
+    if (infos) infos->push_back(std::move(info));
+  }
+  const ByteWriter header = file_header(model, render, uint32_t(sections->size()), out.size());
+  std::copy(header.data().begin(), header.data().end(), out.data().begin());
+  // The chunks follow the sections, each checked by its own CRC in the RESI index, so a
+  // reader can leave them in the file until a frame needs them.
+  if (chunk_bytes > 0) out.bytes(model.residual.payload.data() + index_bytes, chunk_bytes);
+  return std::move(out.data());
+}
+
+}  // namespace
+
 std::vector<uint8_t> write_container(const Model& model, const WriteOptions& options,
                                      std::vector<SectionInfo>* infos) {
   std::vector<std::pair<uint32_t, std::vector<uint8_t>>> sections;
@@ -187,39 +254,11 @@ std::vector<uint8_t> write_container(const Model& model, const WriteOptions& opt
   if (!model.placement.empty()) sections.emplace_back(kPlacement, placement_bytes(model));
   if (render && !model.materials.empty()) sections.emplace_back(kMaterials, material_bytes(model));
 
-  ByteWriter body;
-  if (infos) infos->clear();
-  // Positions decode without FACE, REND and PLAC: a reader that skips them is still right.
-  for (const auto& [tag, raw] : sections) {
-    SectionInfo info = put_section(body, tag, tag != kFaces && tag != kRender && tag != kPlacement && tag != kMaterials,
-                                   raw, section_level(tag, raw.size(), options.zstd_level));
-    info.offset += kHeaderBytes;
-    if (infos) infos->push_back(std::move(info));
-  }
-  ByteWriter out;
-  out.bytes(kMagic, 4);
-  const bool fast = !model.residual.payload.empty() && model.residual.payload[0] == fast_residual::kPayloadVersion;
-  out.u16(fast ? kFastFormatVersionMajor : kFormatVersionMajor);
-  const bool scene = render || !model.placement.empty();
-  out.u16(fast ? (model.low_rank.components > 0 ? kFastPackedFormatVersionMinor
-                  : scene                       ? kFastRenderFormatVersionMinor
-                                                : kFastFormatVersionMinor)
-               : (scene ? kRenderFormatVersionMinor : kFormatVersionMinor));
-  out.u32(kFileFlagZeroBlocks | (model.meta.inbetween != Inbetween::Linear ? kFileFlagInbetween : 0));
-  out.u32(uint32_t(sections.size()));
-  out.u64(kHeaderBytes + body.size());
-  out.u32(crc32c(out.data().data(), kHeaderBytes - 4));
-  out.bytes(body.data().data(), body.size());
-  // The chunks follow the sections, each checked by its own CRC in the RESI index, so a
-  // reader can leave them in the file until a frame needs them.
-  if (model.residual.step > 0)
-    out.bytes(model.residual.payload.data() + index_bytes, model.residual.payload.size() - index_bytes);
-  return std::move(out.data());
+  return assemble_container(model, render, index_bytes, options, &sections, infos);
 }
 
 uint64_t face_payload_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
-  bool unused;
-  return stored_form(face_bytes(faces, options), options.zstd_level, &unused).size();
+  return stored_size(face_bytes(faces, options), options.zstd_level);
 }
 
 uint64_t face_section_bytes(const std::vector<uint32_t>& faces, const WriteOptions& options) {
