@@ -17,7 +17,7 @@
 #include "test_util.h"
 
 namespace dcurve::test {
-namespace {
+namespace cli_hostile_assets {  // named: the sanitized build batches test files together
 using nlohmann::json;
 namespace fs = std::filesystem;
 
@@ -107,5 +107,5 @@ TEST(CliHostileAssets, TexturesAreChargedForEveryCopyTheEncodeHolds) {
   }
 }
 
-}  // namespace
+}  // namespace cli_hostile_assets
 }  // namespace dcurve::test

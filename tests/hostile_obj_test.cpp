@@ -26,7 +26,7 @@
 #include "test_util.h"
 
 namespace dcurve::test {
-namespace {
+namespace hostile_obj {  // named: the sanitized build batches test files together
 namespace fs = std::filesystem;
 
 void write_bytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
@@ -240,5 +240,5 @@ TEST(HostileGltfResources, PlusInAUriIsAPlus) {
   EXPECT_TRUE(contains(err, "tinygltf reads as one")) << err;
 }
 
-}  // namespace
+}  // namespace hostile_obj
 }  // namespace dcurve::test
