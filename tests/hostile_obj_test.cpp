@@ -135,7 +135,7 @@ TEST(HostileObj, NamesKeepTheirSpacesAndUnusedNamesMakeNoGroup) {
 
 TEST(HostileObj, CommentsAfterRecordsAreComments) {
   TempDir dir;
-  write_bytes(dir / "c.obj", "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1 #uv\n"
+  write_bytes(dir / "c.obj", "v 0 0 1e-50 # origin (below float's range: 0, as a stream reads it)\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1 #uv\n"
                              "f 1/1 2/2 3/3 # c\n# f 1 2 9\n");
   ObjCorners corners;
   ASSERT_EQ(read_obj_mesh(dir / "c.obj", &corners), "");

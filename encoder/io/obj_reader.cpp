@@ -1,7 +1,6 @@
 #include "encoder/io/obj_reader.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -73,14 +72,23 @@ struct Cursor {
   }
 };
 
-// A decimal number within float range (hexadecimal floats, inf and nan refused).
+// A decimal number within float range (hexadecimal floats, inf and nan refused), rounded
+// once, straight to float, as a stream reads it (through double it could round twice).
 bool parse_number(std::string_view t, float* x) {
   if (!t.empty() && t[0] == '+') t.remove_prefix(1);
   if (t.empty() || t.find_first_of("xXiInN") != std::string_view::npos) return false;
-  double d = 0;
-  const auto r = std::from_chars(t.data(), t.data() + t.size(), d);
-  if (r.ec != std::errc() || r.ptr != t.data() + t.size() || !(std::fabs(d) <= double(FLT_MAX))) return false;
-  *x = float(d);
+  float f = 0;
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), f);
+  if (r.ptr != t.data() + t.size()) return false;
+  if (r.ec == std::errc::result_out_of_range) {  // below float's least: a stream reads 0 or a denormal
+    double d = 0;
+    const auto rd = std::from_chars(t.data(), t.data() + t.size(), d);
+    if (rd.ec != std::errc() || !(std::fabs(d) <= 1.0)) return false;
+    f = float(d);
+  } else if (r.ec != std::errc() || !std::isfinite(f)) {
+    return false;
+  }
+  *x = f;
   return true;
 }
 
