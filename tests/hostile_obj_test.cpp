@@ -112,6 +112,10 @@ TEST(HostileObj, ManyMaterialNamesAndLongFacesReadInLinearTime) {
   EXPECT_EQ(corners.materials.size(), 300000u);
   ASSERT_TRUE(finishes_within(30, [&, path = dir / "polygon.obj"] { polygon_err = read_obj_mesh(path); }));
   EXPECT_TRUE(contains(polygon_err, "uses vertex 1 twice")) << polygon_err;
+  // The same face without the repeat is read, triangulated, within the same bound.
+  write_bytes(dir / "polygon.obj", big + polygon + "\n");
+  ASSERT_TRUE(finishes_within(30, [&, path = dir / "polygon.obj"] { polygon_err = read_obj_mesh(path); }));
+  EXPECT_EQ(polygon_err, "");
 }
 
 TEST(HostileObj, NamesKeepTheirSpacesAndUnusedNamesMakeNoGroup) {

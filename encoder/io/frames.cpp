@@ -69,10 +69,6 @@ bool copy_finite_vertices(const std::string& path, const PolygonSoup& soup, std:
   return true;
 }
 
-}  // namespace
-
-namespace {
-
 // OFF and PLY through OpenMesh's readers, checked before (text_mesh_check) and after
 // (counts_match): those readers open no other file.
 bool read_openmesh_soup(const std::string& path, PolygonSoup* soup, std::string* error) {
@@ -111,6 +107,11 @@ bool write_mesh(const std::string& path, const float* xyz, uint32_t vertex_count
 }
 
 bool face_repeats_vertex(const uint32_t* ids, size_t n) {
+  if (n > 16) {  // sorted, not pairwise: a polygon of 100,000 corners must not take 10^10 steps
+    std::vector<uint32_t> sorted(ids, ids + n);
+    std::sort(sorted.begin(), sorted.end());
+    return std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end();
+  }
   for (size_t k = 1; k < n; ++k)
     if (std::find(ids, ids + k, ids[k]) != ids + k) return true;
   return false;

@@ -226,13 +226,13 @@ class Parser {
 
 }  // namespace
 
-bool parse_obj(const std::string& path, const std::string& text, ObjMesh* out, std::string* error) {
+bool parse_obj(const std::string& path, std::string_view text, ObjMesh* out, std::string* error) {
   *out = ObjMesh{};
   Parser parser(out);
   size_t number = 1;
   for (size_t begin = 0; begin < text.size(); ++number) {
     size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
+    if (end == std::string_view::npos) end = text.size();
     const char* p = text.data() + begin;
     const char* q = text.data() + end;
     std::string problem = std::find_if(p, q, is_control) != q ? "a control character in a text mesh file" : "";
@@ -246,7 +246,7 @@ bool parse_obj(const std::string& path, const std::string& text, ObjMesh* out, s
 bool read_obj(const std::string& path, ObjMesh* out, std::string* error) {
   std::vector<uint8_t> bytes;
   if (!read_file(path, &bytes, error)) return false;
-  return parse_obj(path, std::string(bytes.begin(), bytes.end()), out, error);
+  return parse_obj(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), out, error);
 }
 
 }  // namespace dcurve

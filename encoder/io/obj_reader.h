@@ -5,6 +5,7 @@
 // fall under the same rule as the glTF reader (read nothing outside the asset).
 #pragma once
 #include <string>
+#include <string_view>
 
 #include "encoder/io/obj_corners.h"
 #include "encoder/io/polygon_reader.h"
@@ -22,7 +23,7 @@ struct ObjMesh {
 // out of the records read so far, a vertex used twice in a face, a name that is not UTF-8.
 // `#` at the start of a line or after white space starts a comment; names (`usemtl`, `mtllib`)
 // are the rest of their line, spaces included. Unknown records (o, g, s, l, ...) are skipped.
-bool parse_obj(const std::string& path, const std::string& text, ObjMesh* out, std::string* error);
+bool parse_obj(const std::string& path, std::string_view text, ObjMesh* out, std::string* error);
 
 // Reads the regular file at `path` (encoder/io/files.h) and parses it.
 bool read_obj(const std::string& path, ObjMesh* out, std::string* error);
