@@ -39,7 +39,9 @@ struct Vector {
 // `posed`: format 2.5) on `m`, and its residual re-coded with the Model predictor on every
 // frame: the grid values, hence the expected positions, do not change. fast: format 4, the
 // basis and the residual as fast payloads, the differences packed.
-Model with_low_rank(Model m, bool posed = false, bool fast = false) {
+// fast_basis: 0 for a range-coded basis, else the fast payload's kind of each basis vector
+// (the mean: None with the spatial flag).
+Model with_low_rank(Model m, bool posed = false, uint8_t fast_basis = 0) {
   const uint32_t V = m.meta.vertex_count, F = m.meta.frame_count, K = 2;
   LowRankModel& lr = m.low_rank;
   lr.components = K;
@@ -57,8 +59,10 @@ Model with_low_rank(Model m, bool posed = false, bool fast = false) {
   pseudo.low_rank = LowRankModel{};
   PredictorPlan spatial = uniform_plan(
       {0, 1, 2}, std::vector<PredictorChoice>(3 * (K + 1), PredictorChoice{PredictorKind::None, 0, 0, SpatialMode::Parallelogram}));
-  lr.basis_payload = fast ? encode_fast_residuals(pseudo, mean_and_basis, std::vector<uint8_t>(K + 1, 0x10), K + 1, nullptr)
-                         : encode_residuals(pseudo, mean_and_basis, &spatial);
+  std::vector<uint8_t> kinds(K + 1, fast_basis);
+  kinds[0] = fast_residual::kSpatialFlag;
+  lr.basis_payload = fast_basis ? encode_fast_residuals(pseudo, mean_and_basis, kinds, K + 1, nullptr)
+                               : encode_residuals(pseudo, mean_and_basis, &spatial);
   if (posed) {
     // Not rotations (nothing requires it): a growing turn about z, a squeeze along z, a drift.
     const int32_t one = int32_t(1) << kLowRankPoseShift;
@@ -74,7 +78,7 @@ Model with_low_rank(Model m, bool posed = false, bool fast = false) {
   std::string err;
   if (!model_grid_prediction(m, UINT64_MAX, &prediction, &err)) ADD_FAILURE() << err;
   ResidualOptions ro;
-  if (fast) {
+  if (fast_basis) {
     // Model alone, then Model plus spatial, then ModelDelta with spatial, over chunks of 4.
     std::vector<uint8_t> kinds;
     for (uint32_t f = 0; f < F; ++f) kinds.push_back(f % 4 == 0 ? 3 : f % 2 ? 0x13 : 0x14);
@@ -180,8 +184,11 @@ std::vector<Vector> recipes() {
       encode_fast_residuals(fast_model, testing::grid(6, 10), {3, 0x14, 4, 1, 0x13, 4, 2, 0x14, 3, 0}, 4,
                             &prediction);
   v.push_back({"fast_model_chunked", fast_model, {}});
-  // Format 4 with LRNK: a fast basis payload, packed coefficient and pose differences.
-  v.push_back({"fast_low_rank_posed", with_low_rank(low_rank_sheet, true, true), {}});
+  // Format 4 with LRNK: a fast basis payload, packed coefficient and pose differences; then
+  // (format 4.3) a basis whose vectors are predicted by Fit over the mean's shape.
+  v.push_back({"fast_low_rank_posed", with_low_rank(low_rank_sheet, true, fast_residual::kSpatialFlag), {}});
+  v.push_back({"fast_low_rank_fit",
+               with_low_rank(low_rank_sheet, false, fast_residual::kSpatialFlag | fast_residual::kFitFlag), {}});
   // Format 3.3: render vertices (copies of vertices 3 and 1 in the last two triangles) with
   // texture coordinates and colours, and a placement (dcrv.md sections 19, 20).
   Model render = small_model(4);

@@ -111,7 +111,8 @@ TEST(FastResidual, AKindThatReadsWhatTheChunkLacksIsNotWritten) {
   EXPECT_TRUE(chunk_of(c, {1, 1, 1, 1, 1, 1}, false).empty());  // frame 0 has no frame before it
   EXPECT_TRUE(chunk_of(c, {0, 2, 2, 2, 2, 2}, false).empty());  // frame 1 has one, not two
   EXPECT_TRUE(chunk_of(c, {3, 3, 3, 3, 3, 3}, false).empty());  // no Model prediction
-  EXPECT_TRUE(chunk_of(c, {0x40, 0, 0, 0, 0, 0}, false).empty());  // an unknown flag
+  EXPECT_TRUE(chunk_of(c, {0x80, 0, 0, 0, 0, 0}, false).empty());  // an unknown flag
+  EXPECT_TRUE(chunk_of(c, {0x10, 0x50, 0, 0, 0, 0}, false).empty());  // Fit outside a basis payload
   EXPECT_TRUE(chunk_of(c, {0x20, 0, 0, 0, 0, 0}, false).empty());  // smooth without spatial
 }
 

@@ -29,6 +29,10 @@ constexpr uint16_t kFastRenderFormatVersionMinor = 1;
 // Minor 2 of format 4 (4.2; it may hold REND and PLAC too): LRNK's differences packed
 // through zstd, a bit 4.0 and 4.1 readers refuse. Written exactly for format 4 files with LRNK.
 constexpr uint16_t kFastPackedFormatVersionMinor = 2;
+// Minor 3 of format 4 (4.3): the LRNK basis payload's kinds may carry the Fit flag
+// (residual.md section 10.7), which 4.2 readers refuse. Written for every format 4 file with
+// LRNK (4.2 is never written now).
+constexpr uint16_t kFastFitBasisFormatVersionMinor = 3;
 // Required feature (file_flags bit 0, since 3.1): residual payloads may be of version 4 (zero
 // block flags), which a 3.0 reader cannot decode. The writer always sets it.
 constexpr uint32_t kFileFlagZeroBlocks = 1u;

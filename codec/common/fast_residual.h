@@ -28,9 +28,16 @@ constexpr uint8_t kFrameKindCount = 5;
 constexpr uint8_t kSpatialFlag = 0x10;
 // With the spatial flag: Mean in place of Parallelogram (codec/common/fast_traversal.h).
 constexpr uint8_t kSmoothFlag = 0x20;
+// With the spatial flag and base kind None, in a low-rank basis payload only: Fit
+// (codec/common/fast_fit.h) in place of the traversal's predictions, weighted by the chunk's
+// frame 0 (the mean). Such a frame's values are basis values, within +-kMaxFitValue (LRNK's
+// bound) as they are decoded, so the differences Fit weighs fit in int32.
+constexpr uint8_t kFitFlag = 0x40;
+constexpr int64_t kMaxFitValue = int64_t(1) << 24;
 inline FrameKind base_kind(uint8_t kind) { return FrameKind(kind & 0x0f); }
 inline bool has_spatial(uint8_t kind) { return (kind & kSpatialFlag) != 0; }
 inline bool is_smooth(uint8_t kind) { return (kind & kSmoothFlag) != 0; }
+inline bool is_fit(uint8_t kind) { return (kind & kFitFlag) != 0; }
 
 // Frames of the chunk decoded before local frame k that `kind` reads.
 inline uint32_t frames_needed(FrameKind kind) {
@@ -44,11 +51,12 @@ inline uint32_t frames_needed(FrameKind kind) {
 inline bool uses_model(FrameKind kind) { return kind == FrameKind::Model || kind == FrameKind::ModelDelta; }
 
 // Whether local frame k of a chunk may use the kind byte `kind` (has_model: the file has a
-// Model prediction).
-inline bool kind_usable(uint8_t kind, uint32_t k, bool has_model) {
+// Model prediction; allow_fit: the payload is a low-rank basis, where Fit may follow frame 0).
+inline bool kind_usable(uint8_t kind, uint32_t k, bool has_model, bool allow_fit = false) {
   const FrameKind base = base_kind(kind);
-  return (kind & ~(kSmoothFlag | kSpatialFlag | 0x0f)) == 0 && (!is_smooth(kind) || has_spatial(kind)) &&
-         uint8_t(base) < kFrameKindCount && k >= frames_needed(base) && (has_model || !uses_model(base));
+  const bool fit_ok = !is_fit(kind) || (allow_fit && k >= 1 && kind == (kFitFlag | kSpatialFlag));
+  return (kind & ~(kFitFlag | kSmoothFlag | kSpatialFlag | 0x0f)) == 0 && (!is_smooth(kind) || has_spatial(kind)) &&
+         fit_ok && uint8_t(base) < kFrameKindCount && k >= frames_needed(base) && (has_model || !uses_model(base));
 }
 
 // Op bytes: m = b & 7, s = b >> 3. m != 0: skip s vertices, then a vertex whose axes a with

@@ -9,25 +9,30 @@ namespace dcurve {
 namespace {
 
 // Vertex adjacency (each undirected edge once per endpoint), sorted by neighbour id so
-// the traversal is deterministic.
+// the traversal is deterministic. Bucketed by vertex first: each list is short to sort.
 void adjacency(const std::vector<uint32_t>& faces, uint32_t V, std::vector<uint32_t>* offsets,
                std::vector<uint32_t>* adj) {
-  std::vector<uint64_t> edges;
-  edges.reserve(faces.size() * 2);
-  for (size_t t = 0; t + 2 < faces.size(); t += 3)
-    for (int k = 0; k < 3; ++k) {
-      const uint64_t a = faces[t + size_t(k)], b = faces[t + size_t((k + 1) % 3)];
-      if (a == b) continue;
-      edges.push_back(a << 32 | b);
-      edges.push_back(b << 32 | a);
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<uint32_t> start(size_t(V) + 1, 0), list(faces.size() / 3 * 6);
+  auto for_each_edge = [&faces](auto&& visit) {
+    for (size_t t = 0; t + 2 < faces.size(); t += 3)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t a = faces[t + size_t(k)], b = faces[t + size_t((k + 1) % 3)];
+        if (a != b) visit(a, b);
+      }
+  };
+  for_each_edge([&](uint32_t a, uint32_t b) { ++start[a + 1], ++start[b + 1]; });
+  for (uint32_t v = 0; v < V; ++v) start[v + 1] += start[v];
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for_each_edge([&](uint32_t a, uint32_t b) { list[fill[a]++] = b, list[fill[b]++] = a; });
   offsets->assign(size_t(V) + 1, 0);
-  for (uint64_t e : edges) ++(*offsets)[size_t(e >> 32) + 1];
-  for (uint32_t v = 0; v < V; ++v) (*offsets)[v + 1] += (*offsets)[v];
-  adj->resize(edges.size());
-  for (size_t i = 0; i < edges.size(); ++i) (*adj)[i] = uint32_t(edges[i]);
+  adj->clear();
+  adj->reserve(start[V]);
+  for (uint32_t v = 0; v < V; ++v) {
+    const auto begin = list.begin() + start[v], end = list.begin() + start[v + 1];
+    std::sort(begin, end);
+    adj->insert(adj->end(), begin, std::unique(begin, end));
+    (*offsets)[v + 1] = uint32_t(adj->size());
+  }
 }
 
 // For every face (v, a, b) whose a and b precede v, and every face (a, b, c) across that
@@ -72,6 +77,41 @@ void add_parallelograms(const std::vector<uint32_t>& faces, const std::vector<ui
   }
 }
 
+// Position i's earlier neighbours (adjacent vertices at positions < i, by id) and Fit set
+// (those, then the vertices before i adjacent to one of them, by id; at most kMaxFitPoints),
+// for t->order and pos its inverse.
+void add_neighbour_sets(const std::vector<uint32_t>& off, const std::vector<uint32_t>& adj,
+                        const std::vector<uint32_t>& pos, Traversal* out) {
+  Traversal& t = *out;
+  const uint32_t V = uint32_t(t.order.size());
+  t.nb_offsets.assign(size_t(V) + 1, 0);
+  for (uint32_t i = 0; i < V; ++i) {
+    const uint32_t v = t.order[i];
+    for (uint32_t k = off[v]; k < off[v + 1]; ++k)
+      if (pos[adj[k]] < i) t.nb.push_back(adj[k]);
+    t.nb_offsets[i + 1] = uint32_t(t.nb.size());
+  }
+  t.fit_offsets.assign(size_t(V) + 1, 0);
+  std::vector<uint32_t> ring, seen(V, UINT32_MAX);  // seen[w] = i: w is in position i's set
+  for (uint32_t i = 0; i < V; ++i) {
+    const uint32_t v = t.order[i], nb_begin = t.nb_offsets[i], nb_end = t.nb_offsets[i + 1];
+    seen[v] = i;
+    for (uint32_t k = nb_begin; k < nb_end; ++k) seen[t.nb[k]] = i;
+    ring.clear();
+    for (uint32_t k = nb_begin; k < nb_end; ++k)
+      for (uint32_t j = off[t.nb[k]]; j < off[t.nb[k] + 1]; ++j)
+        if (pos[adj[j]] < i && seen[adj[j]] != i) {
+          seen[adj[j]] = i;
+          ring.push_back(adj[j]);
+        }
+    std::sort(ring.begin(), ring.end());
+    t.fit.insert(t.fit.end(), t.nb.begin() + nb_begin, t.nb.begin() + nb_end);
+    t.fit.insert(t.fit.end(), ring.begin(), ring.end());
+    t.fit.resize(std::min<size_t>(t.fit.size(), t.fit_offsets[i] + kMaxFitPoints));
+    t.fit_offsets[i + 1] = uint32_t(t.fit.size());
+  }
+}
+
 Traversal traversal_from_faces(const Model& m) {
   const uint32_t V = m.meta.vertex_count;
   std::vector<uint32_t> off, adj;
@@ -97,31 +137,8 @@ Traversal traversal_from_faces(const Model& m) {
         }
     }
   }
-  t.nb_offsets.assign(size_t(V) + 1, 0);
-  for (uint32_t i = 0; i < V; ++i) {
-    const uint32_t v = t.order[i];
-    for (uint32_t k = off[v]; k < off[v + 1]; ++k)
-      if (pos[adj[k]] < i) t.nb.push_back(adj[k]);
-    t.nb_offsets[i + 1] = uint32_t(t.nb.size());
-  }
+  add_neighbour_sets(off, adj, pos, &t);
   add_parallelograms(m.faces, pos, &t);
-  // Fit sets: the earlier neighbours, then the vertices before v adjacent to one of them.
-  t.fit_offsets.assign(size_t(V) + 1, 0);
-  std::vector<uint32_t> ring;
-  for (uint32_t i = 0; i < V; ++i) {
-    const uint32_t v = t.order[i], nb_begin = t.nb_offsets[i], nb_end = t.nb_offsets[i + 1];
-    const auto is_nb = [&](uint32_t w) { return std::binary_search(t.nb.begin() + nb_begin, t.nb.begin() + nb_end, w); };
-    ring.clear();
-    for (uint32_t k = nb_begin; k < nb_end; ++k)
-      for (uint32_t j = off[t.nb[k]]; j < off[t.nb[k] + 1]; ++j)
-        if (pos[adj[j]] < i && adj[j] != v && !is_nb(adj[j])) ring.push_back(adj[j]);
-    std::sort(ring.begin(), ring.end());
-    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-    t.fit.insert(t.fit.end(), t.nb.begin() + nb_begin, t.nb.begin() + nb_end);
-    t.fit.insert(t.fit.end(), ring.begin(), ring.end());
-    t.fit.resize(std::min<size_t>(t.fit.size(), t.fit_offsets[i] + kMaxFitPoints));
-    t.fit_offsets[i + 1] = uint32_t(t.fit.size());
-  }
   return t;
 }
 
@@ -146,6 +163,19 @@ Traversal traversal_from_curves(const Model& m) {
 }
 
 }  // namespace
+
+Traversal neighbour_traversal(const std::vector<uint32_t>& faces, std::vector<uint32_t> order) {
+  const uint32_t V = uint32_t(order.size());
+  std::vector<uint32_t> off, adj, pos(V);
+  adjacency(faces, V, &off, &adj);
+  Traversal t;
+  t.from_faces = true;
+  t.order = std::move(order);
+  for (uint32_t i = 0; i < V; ++i) pos[t.order[i]] = i;
+  add_neighbour_sets(off, adj, pos, &t);
+  t.para_offsets.assign(size_t(V) + 1, 0);
+  return t;
+}
 
 Traversal build_traversal(const Model& model) {
   return model.faces.empty() ? traversal_from_curves(model) : traversal_from_faces(model);

@@ -92,6 +92,10 @@ constexpr uint32_t kMaxFitPoints = 16;
 // vertex of the curve, the parallelogram (p1, p1, p2) extrapolates linearly along it).
 // Needs a validated model.
 Traversal build_traversal(const Model& model);
+// The earlier neighbours and Fit sets of `order` (a permutation of the V vertices) over the
+// edges of `faces`, by the rules of build_traversal; no parallelograms. For spatial
+// predictors over another vertex order (the fast traversal's Fit, codec/common/fast_fit.h).
+Traversal neighbour_traversal(const std::vector<uint32_t>& faces, std::vector<uint32_t> order);
 
 class SpatialWeightsSource;
 
@@ -127,6 +131,9 @@ struct ResidualOptions {
   // tuned on that coder), and its last step recodes the chosen payloads with the flags
   // where that is smaller (encoder/rate/block_flags.h).
   bool zero_block_flags = false;
+  // The payload is a low-rank basis (LRNK's K + 1 pseudo-frames): a fast payload's kinds may
+  // carry the Fit flag there (format_spec/residual.md section 10.7), nowhere else.
+  bool low_rank_basis = false;
 };
 
 // options.traversal when set, else build_traversal(model) stored in *owned, with its

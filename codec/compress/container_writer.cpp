@@ -194,7 +194,7 @@ ByteWriter file_header(const Model& model, bool render, uint32_t section_count, 
   const bool fast = !model.residual.payload.empty() && model.residual.payload[0] == fast_residual::kPayloadVersion;
   out.u16(fast ? kFastFormatVersionMajor : kFormatVersionMajor);
   const bool scene = render || !model.placement.empty();
-  out.u16(fast ? (model.low_rank.components > 0 ? kFastPackedFormatVersionMinor
+  out.u16(fast ? (model.low_rank.components > 0 ? kFastFitBasisFormatVersionMinor
                   : scene                       ? kFastRenderFormatVersionMinor
                                                 : kFastFormatVersionMinor)
                : (scene ? kRenderFormatVersionMinor : kFormatVersionMinor));

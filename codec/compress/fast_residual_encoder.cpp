@@ -15,7 +15,7 @@ using namespace fast_residual;
 
 void fast_frame_residuals(uint8_t kind, const FastTraversal& t, const int32_t* q, const int32_t* q1,
                           const int32_t* q2, const int32_t* M, const int32_t* M1, size_t n, int64_t* r,
-                          int32_t* scratch) {
+                          int32_t* scratch, const FastFit* fit) {
   predict_frame(base_kind(kind), q1, q2, M, M1, n, scratch);
   if (!has_spatial(kind)) {
     for (size_t i = 0; i < n; ++i) r[i] = int64_t(q[i]) - scratch[i];
@@ -27,9 +27,13 @@ void fast_frame_residuals(uint8_t kind, const FastTraversal& t, const int32_t* q
       const size_t x = size_t(t.order[i]) * 3 + size_t(a);
       e[i * 3 + size_t(a)] = int64_t(q[x]) - scratch[x];
     }
-  for (size_t i = 0; i < n / 3; ++i)
-    for (int a = 0; a < 3; ++a)
-      r[i * 3 + size_t(a)] = e[i * 3 + size_t(a)] - fast_spatial(t, i, e.data(), a, is_smooth(kind));
+  for (size_t i = 0; i < n / 3; ++i) {
+    int64_t p[3];
+    if (is_fit(kind)) fast_fit_position(*fit, i, e.data(), p);
+    else
+      for (int a = 0; a < 3; ++a) p[a] = fast_spatial(t, i, e.data(), a, is_smooth(kind));
+    for (int a = 0; a < 3; ++a) r[i * 3 + size_t(a)] = e[i * 3 + size_t(a)] - p[a];
+  }
 }
 
 namespace {
@@ -85,18 +89,18 @@ void write_stream(const std::vector<uint8_t>& raw, ByteWriter* w) {
 }  // namespace
 
 std::vector<uint8_t> encode_fast_chunk(const FastTraversal& t, uint32_t V, const uint8_t* kinds, uint32_t frames,
-                                       const int32_t* q, const int32_t* model) {
+                                       const int32_t* q, const int32_t* model, const FastFit* fit) {
   const size_t n = size_t(V) * 3;
   std::vector<int64_t> r(n);
   std::vector<int32_t> scratch(n);
   ByteWriter ops, values;
   std::vector<uint32_t> op_counts, checksums;
   for (uint32_t k = 0; k < frames; ++k) {
-    if (!kind_usable(kinds[k], k, model != nullptr)) return {};
+    if (!kind_usable(kinds[k], k, model != nullptr, fit != nullptr)) return {};
     const int32_t* f = q + k * n;
     fast_frame_residuals(kinds[k], t, f, k >= 1 ? f - n : nullptr, k >= 2 ? f - 2 * n : nullptr,
                          model ? model + k * n : nullptr, model && k >= 1 ? model + (k - 1) * n : nullptr, n,
-                         r.data(), scratch.data());
+                         r.data(), scratch.data(), fit);
     op_counts.push_back(append_frame_tokens(r.data(), V, &ops, &values));
     checksums.push_back(residual_walk::values_checksum(f, n));
   }
@@ -121,8 +125,12 @@ std::vector<uint8_t> encode_fast_residuals(const Model& model, const std::vector
   std::vector<std::vector<uint8_t>> chunks;
   for (uint32_t c = 0; c < chunk_count(F, chunk_frames); ++c) {
     const ChunkSpan span = chunk_span(F, chunk_frames, c);
-    chunks.push_back(encode_fast_chunk(t, V, kinds.data() + span.first, span.count, q.data() + n * span.first,
-                                       model_prediction ? model_prediction->data() + n * span.first : nullptr));
+    const uint8_t* chunk_kinds = kinds.data() + span.first;
+    const bool uses_fit = std::any_of(chunk_kinds, chunk_kinds + span.count, is_fit);
+    const FastFit fit = uses_fit ? fast_fit(model.faces, t, q.data() + n * span.first) : FastFit();
+    chunks.push_back(encode_fast_chunk(t, V, chunk_kinds, span.count, q.data() + n * span.first,
+                                       model_prediction ? model_prediction->data() + n * span.first : nullptr,
+                                       uses_fit ? &fit : nullptr));
     if (chunks.back().empty()) return {};
   }
   return assemble_residual_payload(kPayloadVersion, !model.faces.empty(), chunk_frames, chunks);

@@ -6,11 +6,13 @@
 #include "codec/common/crc32.h"
 #include "codec/common/error.h"
 #include "codec/common/residual_walk.h"
+#include "codec/decompress/fast_tokens.h"
 #include "codec/decompress/zstd_frame.h"
 
 namespace dcurve {
 
 using namespace fast_residual;
+using namespace fast_tokens;
 
 size_t FastChunkDecoder::memory_bytes() const {
   return sizeof(*this) + kinds_.capacity() + (op_counts_.capacity() + checksums_.capacity()) * 4 + ops_.capacity() +
@@ -44,31 +46,12 @@ bool read_stream(ByteReader& r, uint64_t max_raw, std::vector<uint8_t>* out, std
   return true;
 }
 
-// A value token at values[*pos]: false when the stream ends or the escape is malformed.
-bool read_value(const std::vector<uint8_t>& values, size_t* pos, int64_t* r) {
-  if (*pos >= values.size()) return false;
-  const uint8_t c = values[(*pos)++];
-  if (c != kValueEscape) {
-    *r = zigzag_decode(uint64_t(c) + 1);
-    return true;
-  }
-  uint64_t u = 0;
-  for (int shift = 0;; shift += 7) {
-    if (shift > 35 || *pos >= values.size()) return false;  // |r| < 2^32 needs at most 5 bytes
-    const uint8_t b = values[(*pos)++];
-    u |= uint64_t(b & 0x7f) << shift;
-    if (!(b & 0x80)) break;
-  }
-  *r = zigzag_decode(u + 256);
-  return true;
-}
-
-bool in_int32(int64_t v) { return v >= INT32_MIN && v <= INT32_MAX; }
 }  // namespace
 
 bool FastChunkDecoder::open(const uint8_t* bytes, size_t size, uint32_t V, uint32_t frames, bool has_model,
-                            const FastTraversal* traversal, std::string* error) {
+                            const FastTraversal* traversal, std::string* error, bool allow_fit) {
   traversal_ = traversal;
+  fit_ = nullptr;
   V_ = V;
   next_ = 0;
   op_pos_ = value_pos_ = 0;
@@ -77,7 +60,7 @@ bool FastChunkDecoder::open(const uint8_t* bytes, size_t size, uint32_t V, uint3
   const uint8_t* kinds = r.take(frames);
   if (!kinds) return fail(error, "fast residual chunk is truncated");
   for (uint32_t k = 0; k < frames; ++k)
-    if (!kind_usable(kinds[k], k, has_model))
+    if (!kind_usable(kinds[k], k, has_model, allow_fit))
       return fail(error, "fast residual frame " + std::to_string(k) + " has a predictor it cannot use");
   op_counts_.resize(frames);
   uint64_t ops = 0;
@@ -99,34 +82,6 @@ bool FastChunkDecoder::open(const uint8_t* bytes, size_t size, uint32_t V, uint3
   return true;
 }
 
-namespace {
-// One frame's op bytes, read one slot with non-zero residuals at a time: a slot is a vertex
-// id, or with the spatial flag a traversal position.
-struct OpCursor {
-  const std::vector<uint8_t>& ops;
-  size_t pos, end;
-  uint32_t V;
-  uint32_t cursor = 0, slot = 0;
-  uint8_t mask = 0;
-  // The next such slot and its axis mask; slot = V after the frame's last op. False on an op
-  // that passes the last slot.
-  bool next() {
-    while (pos < end) {
-      const uint8_t b = ops[pos++];
-      const uint32_t m = b & 7, s = b >> 3;
-      cursor += m == 0 ? kLongSkip * (s + 1) : s;
-      if (cursor >= V) return false;
-      if (m == 0) continue;
-      slot = cursor++;
-      mask = uint8_t(m);
-      return true;
-    }
-    slot = V;
-    mask = 0;
-    return true;
-  }
-};
-}  // namespace
 
 // The frame's residuals added to its base prediction in out, in vertex-id order.
 bool FastChunkDecoder::add_residuals(int32_t* out) {
@@ -136,7 +91,7 @@ bool FastChunkDecoder::add_residuals(int32_t* out) {
       if (!(c.mask >> a & 1)) continue;
       int64_t r = 0;
       int32_t& x = out[size_t(c.slot) * 3 + size_t(a)];
-      if (!read_value(values_, &value_pos_, &r) || !in_int32(int64_t(x) + r)) return false;
+      if (!read_value(values_.data(), values_.size(), &value_pos_, &r) || !in_int32(int64_t(x) + r)) return false;
       x = int32_t(int64_t(x) + r);
     }
   }
@@ -165,12 +120,20 @@ inline void predict_position(FastSpatial type, const uint32_t* r, const int64_t*
       for (int a = 0; a < 3; ++a) p[a] = 0;
   }
 }
+// A Fit frame's three values at a position (its base kind is None: values are corrections).
+bool basis_values(const int64_t* x) {
+  for (int a = 0; a < 3; ++a)
+    if (x[a] < -kMaxFitValue || x[a] > kMaxFitValue) return false;
+  return true;
+}
 }  // namespace
+
+bool FastChunkDecoder::uses_fit() const { return std::any_of(kinds_.begin(), kinds_.end(), is_fit); }
 
 // Spatial frames: in traversal order, each position's residual (zero unless the ops name it)
 // plus what the traversal predicts from the positions before it is the correction of the
 // base prediction. One pass, no buffer to clear.
-bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth) {
+bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth, const FastFit* fit) {
   const FastTraversal& t = *traversal_;
   spatial_.resize(size_t(V_) * 3);
   int64_t* e = spatial_.data();  // position-major
@@ -180,15 +143,19 @@ bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth) {
     FastSpatial type = FastSpatial(t.type[i]);
     if (smooth && type == FastSpatial::Parallelogram) type = FastSpatial::Mean;
     int64_t* x = e + size_t(i) * 3;
-    predict_position(type, &t.refs[size_t(i) * 3], e, x);
+    if (fit)
+      fast_fit_position(*fit, i, e, x);
+    else
+      predict_position(type, &t.refs[size_t(i) * 3], e, x);
     if (i == c.slot) {
       for (int a = 0; a < 3; ++a) {
         int64_t r = 0;
-        if ((c.mask >> a & 1) && !read_value(values_, &value_pos_, &r)) return false;
+        if ((c.mask >> a & 1) && !read_value(values_.data(), values_.size(), &value_pos_, &r)) return false;
         x[a] += r;
       }
       if (!c.next()) return false;
     }
+    if (fit && !basis_values(x)) return false;
     int32_t* o = out + size_t(t.order[i]) * 3;
     const int64_t q0 = int64_t(o[0]) + x[0], q1 = int64_t(o[1]) + x[1], q2 = int64_t(o[2]) + x[2];
     // Rejecting q outside int32 also keeps every e within 2^33, so the sums stay small.
@@ -206,12 +173,21 @@ bool FastChunkDecoder::decode_frame(const int32_t* q1, const int32_t* q2, const 
   if (next_ >= kinds_.size()) return fail(error, "fast residual chunk has no more frames");
   const size_t n = size_t(V_) * 3;
   predict_frame(kind(next_), q1, q2, M, M1, n, out);
-  const bool spatial = has_spatial(kinds_[next_]);
+  const uint8_t k = kinds_[next_];
+  const bool spatial = has_spatial(k);
   if (spatial && (!traversal_ || traversal_->order.size() != V_))
     return fail(error, "fast residual frame needs the vertex traversal, which was not supplied");
-  if (!(spatial ? add_spatial_residuals(out, is_smooth(kinds_[next_])) : add_residuals(out)))
+  if (is_fit(k) && (!fit_ || fit_->offsets.size() != size_t(V_) + 1))
+    return fail(error, "fast residual frame needs Fit weights, which were not supplied");
+  if (!(spatial ? add_spatial_residuals(out, is_smooth(k), is_fit(k) ? fit_ : nullptr) : add_residuals(out)))
     return fail(error, "fast residual frame " + std::to_string(next_) + " is corrupted or decodes out of range");
-  if (kVerifyChecksums && residual_walk::values_checksum(out, n) != checksums_[next_])
+  return finish_frame(out, error);
+}
+
+// Frame next()'s checksum over its values out, then past it; after the last frame, that the
+// values were used up.
+bool FastChunkDecoder::finish_frame(const int32_t* out, std::string* error) {
+  if (kVerifyChecksums && residual_walk::values_checksum(out, size_t(V_) * 3) != checksums_[next_])
     return fail(error, "fast residual frame " + std::to_string(next_) +
                            " decodes to other values than were coded (checksum mismatch)");
   if (++next_ == kinds_.size() && value_pos_ != values_.size())
@@ -220,11 +196,21 @@ bool FastChunkDecoder::decode_frame(const int32_t* q1, const int32_t* q2, const 
 }
 
 bool decode_fast_chunk(const FastTraversal& traversal, uint32_t V, const uint8_t* bytes, size_t size, uint32_t frames,
-                       const int32_t* model, int32_t* q, std::string* error) {
+                       const int32_t* model, int32_t* q, std::string* error, const std::vector<uint32_t>* basis_faces) {
   FastChunkDecoder chunk;
-  if (!chunk.open(bytes, size, V, frames, model != nullptr, &traversal, error)) return false;
+  if (!chunk.open(bytes, size, V, frames, model != nullptr, &traversal, error, basis_faces != nullptr)) return false;
   const size_t n = size_t(V) * 3;
+  FastFit fit;
   for (uint32_t k = 0; k < frames; ++k) {
+    if (k == 1 && chunk.uses_fit()) {  // frame 0 is the shape Fit is weighted by
+      fit = fast_fit(*basis_faces, traversal, q);
+      chunk.set_fit(&fit);
+    }
+    if (const uint32_t run = chunk.fit_run()) {
+      if (!chunk.decode_fit_frames(run, q + k * n, error)) return false;
+      k += run - 1;
+      continue;
+    }
     const int32_t* q1 = k >= 1 ? q + (k - 1) * n : nullptr;
     const int32_t* q2 = k >= 2 ? q + (k - 2) * n : nullptr;
     const int32_t* M = model ? model + k * n : nullptr;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "codec/common/fast_fit.h"
 #include "codec/common/fast_residual.h"
 #include "codec/common/fast_traversal.h"
 
@@ -16,10 +17,21 @@ class FastChunkDecoder {
  public:
   // Parses the frame table of a chunk of `frames` frames of V vertices (its `size` bytes)
   // and decompresses its streams. has_model: the file has a Model prediction; traversal:
-  // fast_traversal of the file's faces, which must outlive the decoding. False with a
-  // message when the table or a stream is malformed; reads nothing outside the bytes.
+  // fast_traversal of the file's faces, which must outlive the decoding; allow_fit: the chunk
+  // is a low-rank basis, whose kinds may carry the Fit flag. False with a message when the
+  // table or a stream is malformed; reads nothing outside the bytes.
   bool open(const uint8_t* bytes, size_t size, uint32_t V, uint32_t frames, bool has_model,
-            const FastTraversal* traversal, std::string* error);
+            const FastTraversal* traversal, std::string* error, bool allow_fit = false);
+  // Whether some frame has the Fit flag; those read set_fit's weights (fast_fit of the
+  // chunk's frame 0), which must outlive their decoding.
+  bool uses_fit() const;
+  void set_fit(const FastFit* fit) { fit_ = fit; }
+  // How many frames from next() on have exactly the kind None + spatial + Fit (a basis's
+  // vectors); decode_fit_frames decodes up to that many side by side into out (count * V * 3
+  // values), checked as decode_frame checks each: one pass over the positions reads each Fit
+  // set once for all of them.
+  uint32_t fit_run() const;
+  bool decode_fit_frames(uint32_t count, int32_t* out, std::string* error);
   // Local frame next() is the one decode_frame decodes; frames go in order from 0.
   uint32_t next() const { return next_; }
   uint32_t frames() const { return uint32_t(kinds_.size()); }
@@ -34,10 +46,14 @@ class FastChunkDecoder {
 
  private:
   bool add_residuals(int32_t* out);
-  bool add_spatial_residuals(int32_t* out, bool smooth);
+  bool add_spatial_residuals(int32_t* out, bool smooth, const FastFit* fit);
+  bool finish_frame(const int32_t* out, std::string* error);
 
   const FastTraversal* traversal_ = nullptr;
+  const FastFit* fit_ = nullptr;
   std::vector<int64_t> spatial_;  // per vertex and axis: residuals, then what the traversal predicts
+  std::vector<int32_t> lanes_;    // decode_fit_frames: per position, the frames' values side by side
+  std::vector<int64_t> sums_;
   uint32_t V_ = 0, next_ = 0;
   std::vector<uint8_t> kinds_;
   std::vector<uint32_t> op_counts_, checksums_;
@@ -46,8 +62,10 @@ class FastChunkDecoder {
 };
 
 // Decodes every frame of one chunk into q (frames * V * 3 values); model: the chunk's Model
-// prediction, frames * V * 3 values, or null without one.
+// prediction, frames * V * 3 values, or null without one. basis_faces: the file's faces when
+// the chunk is a low-rank basis (its kinds may carry the Fit flag), else null.
 bool decode_fast_chunk(const FastTraversal& traversal, uint32_t V, const uint8_t* bytes, size_t size, uint32_t frames,
-                       const int32_t* model, int32_t* q, std::string* error);
+                       const int32_t* model, int32_t* q, std::string* error,
+                       const std::vector<uint32_t>* basis_faces = nullptr);
 
 }  // namespace dcurve

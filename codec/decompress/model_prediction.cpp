@@ -19,8 +19,10 @@ bool decode_low_rank_basis(const Model& model, uint64_t max_values, const Residu
   if ((uint64_t(lr.components) + 1) * n > max_values)
     return fail(error, "low-rank model is implausibly large for the file size");
   const Model pseudo = low_rank_basis_model(model);
+  ResidualOptions basis_options = options;
+  basis_options.low_rank_basis = true;
   std::string why;
-  if (!decode_residuals(pseudo, out, &why, options)) return fail(error, "low-rank basis: " + why);
+  if (!decode_residuals(pseudo, out, &why, basis_options)) return fail(error, "low-rank basis: " + why);
   for (size_t i = n; i < out->size(); ++i)
     if ((*out)[i] < -kMaxLowRankBasis || (*out)[i] > kMaxLowRankBasis)
       return fail(error, "low-rank basis value out of range");

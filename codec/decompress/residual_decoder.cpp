@@ -171,7 +171,7 @@ bool decode_all(const Model& model, std::vector<int32_t>* q, ResidualPlan* plan,
     const bool ok = fast ? decode_fast_chunk(fast_trav, V, bytes, size_t(e.size), span.count,
                                             chunk_options.model_prediction ? chunk_options.model_prediction->data()
                                                                            : nullptr,
-                                            values, &why)
+                                            values, &why, options.low_rank_basis ? &model.faces : nullptr)
                         : decode_residual_chunk(V, trav, bytes, size_t(e.size), span.count, values, chunk_options,
                                                 &ws, &why);
     if (!ok) return fail(error, "residual chunk " + std::to_string(c) + ": " + why);

@@ -33,12 +33,10 @@ bool fast_file_bytes(Model* trial, const std::vector<std::vector<float>>& frames
 
 bool fast_low_rank_basis(Model* m, std::string* error, const std::vector<int32_t>* values) {
   if (m->low_rank.components == 0) return true;
-  const Model pseudo = low_rank_basis_model(*m);
   std::vector<int32_t> decoded;
-  if (!values && !decode_residuals(pseudo, &decoded, error)) return false;
-  const std::vector<uint8_t> kinds(pseudo.meta.frame_count, fast_residual::kSpatialFlag);  // None + spatial
-  std::vector<uint8_t> payload =
-      encode_fast_residuals(pseudo, values ? *values : decoded, kinds, pseudo.meta.frame_count, nullptr);
+  if (values) decoded = *values;
+  else if (!decode_residuals(low_rank_basis_model(*m), &decoded, error)) return false;
+  std::vector<uint8_t> payload = code_mean_and_basis_fast(*m, &decoded, {});
   if (payload.empty()) return fail(error, "internal error: the low-rank basis does not code as a fast payload");
   m->low_rank.basis_payload = std::move(payload);
   return true;

@@ -8,6 +8,7 @@
 
 #include "codec/common/low_rank.h"
 #include "codec/common/residual.h"
+#include "codec/common/fast_fit.h"
 #include "codec/common/fast_residual.h"
 #include "codec/common/fast_traversal.h"
 #include "codec/compress/fast_residual_encoder.h"
@@ -168,54 +169,24 @@ std::vector<uint8_t> code_mean_and_basis(const Model& model, std::vector<int32_t
 }
 
 // One basis vector's values (plane, V * 3) chosen from its exact amplitudes x (basis steps)
-// for the fast payload: each within kBasisSnap of its amplitude, nearest what the fast
-// traversal predicts (smooth: the kind's smooth flag) from the values chosen before it.
-void snap_plane_fast(const FastTraversal& t, const double* x, bool smooth, int32_t* plane) {
+// for the fast payload: each within kBasisSnap of its amplitude, nearest what `kind` (None
+// with the spatial flag, and the smooth or Fit flag) predicts from the values chosen before it.
+void snap_plane_fast(const FastTraversal& t, const FastFit& fit, const double* x, uint8_t kind, int32_t* plane) {
   std::vector<int64_t> e(t.order.size() * 3);
   const double limit = double(kMaxLowRankBasis);
   for (size_t pos = 0; pos < t.order.size(); ++pos) {
+    int64_t p[3];
+    if (fast_residual::is_fit(kind)) fast_fit_position(fit, pos, e.data(), p);
+    else
+      for (int a = 0; a < 3; ++a) p[a] = fast_spatial(t, pos, e.data(), a, fast_residual::is_smooth(kind));
     const size_t v = size_t(t.order[pos]) * 3;
     for (int a = 0; a < 3; ++a) {
       const size_t i = v + size_t(a);
       const double lo = std::max(std::ceil(x[i] - kBasisSnap), -limit), hi = std::min(std::floor(x[i] + kBasisSnap), limit);
-      plane[i] = int32_t(std::clamp(double(fast_spatial(t, pos, e.data(), a, smooth)), lo, std::max(lo, hi)));
+      plane[i] = int32_t(std::clamp(double(p[a]), lo, std::max(lo, hi)));
       e[pos * 3 + size_t(a)] = plane[i];
     }
   }
-}
-
-// The fast payload's coding of the K + 1 pseudo-frames (format 4): each from itself alone
-// through the fast traversal (kind None with the spatial flag, and the smooth flag where that
-// codes the plane smaller), the basis values snapped for the kind (snap_plane_fast).
-std::vector<uint8_t> code_mean_and_basis_fast(const Model& model, std::vector<int32_t>* values_io,
-                                              const std::vector<double>& exact, uint32_t frames) {
-  using fast_residual::kSmoothFlag;
-  using fast_residual::kSpatialFlag;
-  std::vector<int32_t>& values = *values_io;
-  const uint32_t V = model.meta.vertex_count;
-  const size_t n = size_t(V) * 3;
-  const FastTraversal t = fast_traversal(model.faces, V);
-  std::vector<uint8_t> kinds(frames, kSpatialFlag);
-  std::vector<int32_t> trial(n);
-  for (uint32_t k = 0; k < frames; ++k) {
-    int32_t* plane = values.data() + k * n;
-    size_t best = SIZE_MAX;
-    for (const uint8_t kind : {kSpatialFlag, uint8_t(kSpatialFlag | kSmoothFlag)}) {
-      std::copy(plane, plane + n, trial.begin());
-      if (k > 0) snap_plane_fast(t, exact.data() + (k - 1) * n, (kind & kSmoothFlag) != 0, trial.data());
-      const size_t bytes = encode_fast_chunk(t, V, &kind, 1, trial.data(), nullptr).size();
-      if (bytes < best) {
-        best = bytes;
-        kinds[k] = kind;
-        std::copy(trial.begin(), trial.end(), plane);  // the mean keeps its values
-      }
-    }
-  }
-  Model pseudo;
-  pseudo.meta = model.meta;
-  pseudo.meta.frame_count = frames;
-  pseudo.faces = model.faces;
-  return encode_fast_residuals(pseudo, values, kinds, frames, nullptr);
 }
 
 // Least-squares coefficients of every frame of q against the quantized mean and basis
@@ -261,6 +232,52 @@ std::vector<uint8_t> coefficient_shifts(const std::vector<int32_t>& values, uint
 }
 
 }  // namespace
+
+std::vector<uint8_t> code_mean_and_basis_fast(const Model& model, std::vector<int32_t>* values_io,
+                                              const std::vector<double>& exact) {
+  const uint32_t frames = uint32_t(values_io->size() / (size_t(model.meta.vertex_count) * 3));
+  using fast_residual::kFitFlag;
+  using fast_residual::kSmoothFlag;
+  using fast_residual::kSpatialFlag;
+  std::vector<int32_t>& values = *values_io;
+  const uint32_t V = model.meta.vertex_count;
+  const size_t n = size_t(V) * 3;
+  const FastTraversal t = fast_traversal(model.faces, V);
+  const FastFit fit = fast_fit(model.faces, t, values.data());
+  std::vector<uint8_t> kinds(frames, kSpatialFlag);
+  size_t mean_best = SIZE_MAX;
+  for (const uint8_t kind : {kSpatialFlag, uint8_t(kSpatialFlag | kSmoothFlag)}) {
+    const size_t bytes = encode_fast_chunk(t, V, &kind, 1, values.data(), nullptr).size();
+    if (bytes < mean_best) {
+      mean_best = bytes;
+      kinds[0] = kind;
+    }
+  }
+  // A vector's bytes are measured as frame 1 of a chunk after the mean, which Fit reads.
+  std::vector<int32_t> pair(values.begin(), values.begin() + std::ptrdiff_t(n));
+  pair.resize(2 * n);
+  int32_t* trial = pair.data() + n;
+  for (uint32_t k = 1; k < frames; ++k) {
+    int32_t* plane = values.data() + k * n;
+    size_t best = SIZE_MAX;
+    for (const uint8_t kind : {kSpatialFlag, uint8_t(kSpatialFlag | kSmoothFlag), uint8_t(kSpatialFlag | kFitFlag)}) {
+      std::copy(plane, plane + n, trial);
+      if (!exact.empty()) snap_plane_fast(t, fit, exact.data() + (k - 1) * n, kind, trial);
+      const uint8_t pair_kinds[2] = {kinds[0], kind};
+      const size_t bytes = encode_fast_chunk(t, V, pair_kinds, 2, pair.data(), nullptr, &fit).size();
+      if (bytes < best) {
+        best = bytes;
+        kinds[k] = kind;
+        std::copy(trial, trial + n, plane);
+      }
+    }
+  }
+  Model pseudo;
+  pseudo.meta = model.meta;
+  pseudo.meta.frame_count = frames;
+  pseudo.faces = model.faces;
+  return encode_fast_residuals(pseudo, values, kinds, frames, nullptr);
+}
 
 size_t anchor_bytes(const Model& model, std::vector<int32_t> values, int threads, const Traversal* traversal) {
   return code_mean_and_basis(model, &values, {}, 1, threads, nullptr, traversal).size();
@@ -310,7 +327,7 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
   }
   PredictorPlan plan;  // Range coding's
   lr.basis_payload = coding == BasisCoding::Fast
-                         ? code_mean_and_basis_fast(*model, &values, exact, K + 1)
+                         ? code_mean_and_basis_fast(*model, &values, exact)
                          : code_mean_and_basis(*model, &values, exact, K + 1, threads, entry, traversal, &plan);
   if (lr.basis_payload.empty()) return false;
   std::vector<double> weights(size_t(F) * K);

@@ -80,6 +80,16 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
                        const Traversal* traversal = nullptr, CodedPayload* basis = nullptr,
                        BasisCoding coding = BasisCoding::Range);
 
+// The fast payload (format 4) of the mean and basis vectors `values` (mean, then the basis
+// vectors, V * 3 each): each pseudo-frame from itself alone through the fast traversal (kind
+// None with the spatial flag), with the flag that codes it smallest: none (parallelograms),
+// smooth (means) or, for a basis vector, Fit over the mean's shape. With `exact` (the basis
+// vectors' amplitudes in basis steps, K * V * 3), each vector is snapped for every kind tried
+// (within 0.75 of its amplitude, nearest the kind's prediction) and *values keeps the chosen
+// values; with `exact` empty the values stay as they are.
+std::vector<uint8_t> code_mean_and_basis_fast(const Model& model, std::vector<int32_t>* values,
+                                              const std::vector<double>& exact);
+
 // The Model predictor of frames 0 .. F - 1 (frame-major, n = V * 3 values each) from the
 // values a basis payload codes (mean_and_basis as quantize_low_rank returns them): what a
 // decoder computes after decoding that payload, without decoding it.
