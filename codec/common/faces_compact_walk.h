@@ -6,16 +6,15 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include <unordered_map>
-#include <unordered_set>
+#include <stdexcept>
 #include <vector>
 
 #include "codec/common/bit_model.h"
 #include "codec/common/error.h"
 #include "codec/common/faces_compact.h"
+#include "codec/common/flat_index.h"
 #include "codec/common/id_ranks.h"
 #include "codec/common/int_coder.h"
-#include "codec/common/mixed_hash.h"
 
 namespace dcurve {
 namespace faces_compact_walk {
@@ -66,9 +65,9 @@ struct Models {
 // edges out, and per vertex its most recent incoming and outgoing edges.
 class Region {
  public:
-  bool seen(uint32_t v) const { return slot_.count(v) != 0; }
+  bool seen(uint32_t v) const { return slot_.contains(v); }
   void mark_seen(uint32_t v) {
-    if (slot_.emplace(v, uint32_t(rings_.size())).second) rings_.emplace_back();
+    if (slot_.insert(v, uint32_t(rings_.size()))) rings_.emplace_back();
     ids_.insert(v);
   }
   const IdRanks& ids() const { return ids_; }
@@ -80,12 +79,12 @@ class Region {
   }
   // Triangles out around v so far, clamped to kFanClasses - 1.
   int fan(uint32_t v) const { return int(std::min<uint32_t>(ring(v).into.count, kFanClasses - 1)); }
-  bool has_edge(uint32_t from, uint32_t to) const { return edges_.count(edge_key(from, to)) != 0; }
+  bool has_edge(uint32_t from, uint32_t to) const { return edges_.contains(edge_key(from, to)); }
   // All three corners must have been marked seen.
   void add_triangle(const uint32_t* t) {
     for (int c = 0; c < 3; ++c) {
       const uint32_t u = t[c], v = t[(c + 1) % 3];
-      edges_.insert(edge_key(u, v));
+      edges_.insert(edge_key(u, v), 0);
       ring(v).into.push(u);
       ring(u).from.push(v);
     }
@@ -119,11 +118,17 @@ class Region {
   struct Rings {
     Recent into, from;
   };
-  Rings& ring(uint32_t v) { return rings_[slot_.at(v)]; }
-  const Rings& ring(uint32_t v) const { return rings_[slot_.at(v)]; }
-  std::unordered_map<uint32_t, uint32_t, MixedHash> slot_;
+  // Only for seen vertices (as std::map::at, a missing one is a logic error, not UB).
+  uint32_t slot(uint32_t v) const {
+    const uint32_t s = slot_.find(v);
+    if (s == FlatIndex::kMissing) throw std::out_of_range("faces_compact_walk: vertex not seen");
+    return s;
+  }
+  Rings& ring(uint32_t v) { return rings_[slot(v)]; }
+  const Rings& ring(uint32_t v) const { return rings_[slot(v)]; }
+  FlatIndex slot_;  // vertex id -> its Rings
   std::vector<Rings> rings_;
-  std::unordered_set<uint64_t, MixedHash> edges_;
+  FlatIndex edges_;  // directed edges out (values unused)
   IdRanks ids_;
 };
 

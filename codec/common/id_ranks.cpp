@@ -18,10 +18,10 @@ uint64_t IdRanks::Fenwick::below(size_t i) const {
 IdRanks::IdRanks() : top_(size_t(1) << kTopBits) {}
 
 bool IdRanks::contains(uint32_t id) const {
-  auto it = lows_.find(id >> kLowBits);
-  if (it == lows_.end()) return false;
+  const uint32_t at = low_of_.find(id >> kLowBits);
+  if (at == FlatIndex::kMissing) return false;
   const uint32_t low = id & ((1u << kLowBits) - 1);
-  return (it->second.bits[low / 64] >> (low % 64)) & 1;
+  return (lows_[at].bits[low / 64] >> (low % 64)) & 1;
 }
 
 void IdRanks::insert(uint32_t id) {
@@ -29,8 +29,10 @@ void IdRanks::insert(uint32_t id) {
   const uint32_t top = id >> (kMidBits + kLowBits), mid = (id >> kLowBits) & ((1u << kMidBits) - 1);
   const uint32_t low = id & ((1u << kLowBits) - 1);
   top_.add(top);
-  mids_.try_emplace(top, size_t(1) << kMidBits).first->second.add(mid);
-  Low& l = lows_[id >> kLowBits];
+  if (mid_of_.insert(top, uint32_t(mids_.size()))) mids_.emplace_back(size_t(1) << kMidBits);
+  mids_[mid_of_.find(top)].add(mid);
+  if (low_of_.insert(id >> kLowBits, uint32_t(lows_.size()))) lows_.emplace_back();
+  Low& l = lows_[low_of_.find(id >> kLowBits)];
   l.bits[low / 64] |= uint64_t(1) << (low % 64);
   for (uint32_t w = low / 64 + 1; w < (1u << kLowBits) / 64; ++w) ++l.before[w];
 }
@@ -40,12 +42,12 @@ uint64_t IdRanks::count_below(uint64_t y) const {
   const uint32_t top = uint32_t(y >> (kMidBits + kLowBits)), mid = uint32_t(y >> kLowBits) & ((1u << kMidBits) - 1);
   const uint32_t low = uint32_t(y) & ((1u << kLowBits) - 1);
   uint64_t n = top_.below(top);
-  auto m = mids_.find(top);
-  if (m != mids_.end()) n += m->second.below(mid);
-  auto l = lows_.find(uint32_t(y >> kLowBits));
-  if (l != lows_.end()) {
-    n += l->second.before[low / 64];
-    if (low % 64) n += std::bitset<64>(l->second.bits[low / 64] & ((uint64_t(1) << (low % 64)) - 1)).count();
+  const uint32_t m = mid_of_.find(top);
+  if (m != FlatIndex::kMissing) n += mids_[m].below(mid);
+  const uint32_t l = low_of_.find(uint32_t(y >> kLowBits));
+  if (l != FlatIndex::kMissing) {
+    n += lows_[l].before[low / 64];
+    if (low % 64) n += std::bitset<64>(lows_[l].bits[low / 64] & ((uint64_t(1) << (low % 64)) - 1)).count();
   }
   return n;
 }

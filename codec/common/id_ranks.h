@@ -5,10 +5,9 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
-#include "codec/common/mixed_hash.h"
+#include "codec/common/flat_index.h"
 
 namespace dcurve {
 
@@ -39,13 +38,16 @@ class IdRanks {
     uint64_t below(size_t i) const;    // total at indices < i
   };
   Fenwick top_;                                   // per top bucket
-  std::unordered_map<uint32_t, Fenwick, MixedHash> mids_;    // per used top bucket: per mid bucket
+  // Per used top bucket (found through mid_of_): per mid bucket.
+  FlatIndex mid_of_;
+  std::vector<Fenwick> mids_;
   // Per used (top, mid): the ids' bits, 64 per word, and per word the ids in earlier words.
   struct Low {
     uint64_t bits[(1u << kLowBits) / 64] = {};
     uint16_t before[(1u << kLowBits) / 64] = {};
   };
-  std::unordered_map<uint32_t, Low, MixedHash> lows_;
+  FlatIndex low_of_;  // (top, mid) -> its Low
+  std::vector<Low> lows_;
   // Ids in [0, y) given count_below(first) for some first <= y: the binary searches of
   // unrank keep one end fixed.
   uint64_t free_from(int64_t first, uint64_t used_before_first, int64_t last) const;
