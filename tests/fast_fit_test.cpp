@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,26 @@ TEST(FastFit, ASmoothBasisVectorCodesSmallerWithFitAndRoundTrips) {
   // to other values: the frame checksum refuses them.
   const std::vector<uint32_t> other(faces.begin() + 12, faces.end());
   EXPECT_FALSE(decode_fast_chunk(t, kV, with_fit.data(), with_fit.size(), 2, nullptr, out.data(), &err, &other));
+}
+
+// Rough vectors: residuals past a value byte's range take escapes of several bytes, and
+// the side-by-side decoding must still find where each vector's values start.
+TEST(FastFit, RoughVectorsWithEscapedValuesDecodeSideBySide) {
+  const std::vector<uint32_t> faces = test::grid_faces(kW, kH);
+  const FastTraversal t = fast_traversal(faces, kV);
+  std::vector<int32_t> q = mean_and_vector();
+  q.resize(4 * kN);
+  std::mt19937 rng(11);
+  for (size_t i = kN; i < q.size(); ++i)
+    q[i] = rng() % 4 == 0 ? int32_t(rng() % 400001) - 200000 : int32_t(rng() % 7) - 3;
+  const FastFit fit = fast_fit(faces, t, q.data());
+  const uint8_t kinds[4] = {kS, kFit, kFit, kFit};
+  const std::vector<uint8_t> bytes = encode_fast_chunk(t, kV, kinds, 4, q.data(), nullptr, &fit);
+  ASSERT_FALSE(bytes.empty());
+  std::vector<int32_t> out(q.size(), 7);
+  std::string err;
+  ASSERT_TRUE(decode_fast_chunk(t, kV, bytes.data(), bytes.size(), 4, nullptr, out.data(), &err, &faces)) << err;
+  EXPECT_EQ(out, q);
 }
 
 TEST(FastFit, TheFlagIsRefusedWhereTheFormatForbidsIt) {

@@ -37,18 +37,22 @@ struct FrameTokens {
   std::vector<size_t> op_begin, value_begin;
 };
 
-FrameTokens token_starts(const std::vector<uint8_t>& ops, const std::vector<uint32_t>& op_counts, uint32_t first,
-                         uint32_t count, size_t op_pos, size_t value_pos) {
-  FrameTokens t;
+// A frame's value tokens are counted from its ops, then stepped over byte by byte (an
+// escaped value takes more than one). False when the values end first.
+bool token_starts(const std::vector<uint8_t>& ops, const std::vector<uint8_t>& values,
+                  const std::vector<uint32_t>& op_counts, uint32_t first, uint32_t count, size_t op_pos,
+                  size_t value_pos, FrameTokens* t) {
   for (uint32_t j = 0; j <= count; ++j) {
-    t.op_begin.push_back(op_pos);
-    t.value_begin.push_back(value_pos);
+    t->op_begin.push_back(op_pos);
+    t->value_begin.push_back(value_pos);
     if (j == count) break;
     const size_t end = op_pos + op_counts[first + j];
-    value_pos += size_t(value_count(ops.data(), op_pos, end));
+    int64_t r = 0;
+    for (uint64_t n = value_count(ops.data(), op_pos, end); n > 0; --n)
+      if (!read_value(values.data(), values.size(), &value_pos, &r)) return false;
     op_pos = end;
   }
-  return t;
+  return true;
 }
 
 // The Fit prediction of lanes l < L of position p (into pred) from the lanes of the
@@ -75,8 +79,8 @@ bool FastChunkDecoder::decode_fit_frames(uint32_t count, int32_t* out, std::stri
   if (!traversal_ || t.order.size() != V_ || !fit_ || fit_->offsets.size() != size_t(V_) + 1)
     return fail(error, "fast residual frame needs the vertex traversal and Fit weights, which were not supplied");
   const size_t L = size_t(count) * 3, n = size_t(V_) * 3;
-  const FrameTokens starts = token_starts(ops_, op_counts_, next_, count, op_pos_, value_pos_);
-  if (starts.value_begin[count] > values_.size())
+  FrameTokens starts;
+  if (!token_starts(ops_, values_, op_counts_, next_, count, op_pos_, value_pos_, &starts))
     return fail(error, "fast residual frame " + std::to_string(next_) + " has fewer values than its ops name");
   std::vector<OpCursor> cursors;
   std::vector<size_t> value_pos(starts.value_begin.begin(), starts.value_begin.end() - 1);
