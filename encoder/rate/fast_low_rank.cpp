@@ -13,9 +13,12 @@
 
 namespace dcurve {
 namespace {
-// Basis values on quarter grid steps: finer than format 3's coarsest, so the prediction the
-// frames lean on stays well inside a grid step.
-constexpr double kBasisStep = 0.25;
+// The count is searched with basis values on quarter grid steps, so the prediction the frames
+// lean on stays well inside a grid step; then coarser steps, each sqrt(2) times the one
+// before, while the file shrinks: a Fit-predicted basis (format 4.3) often codes a coarser
+// step in fewer bytes than its frames then lose (horse-gallop's best is near 0.4, a rope's
+// 0.25).
+constexpr double kBasisStep = 0.25, kStepRatio = 1.41421356237, kMaxBasisStep = 1.0;
 // Counts tried in order; the search stops after the file grew twice in a row.
 constexpr uint32_t kCounts[] = {0, 2, 4, 6, 8, 12, 16, 24, 32, 48, 64};
 
@@ -42,6 +45,26 @@ bool fast_low_rank_basis(Model* m, std::string* error, const std::vector<int32_t
   return true;
 }
 
+namespace {
+// The whole file's bytes with K components on basis step `step` (K = 0: no model) into
+// *trial (a copy of base). False with *error set when coding fails; *coded false (and no
+// error) when the model leaves the format's ranges.
+bool code_trial(const Model& base, const GridComponents& pca, uint32_t K, double step,
+                const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
+                const FastLayerOptions& options, Model* trial, size_t* bytes, bool* coded, std::string* error) {
+  const uint32_t F = base.meta.frame_count;
+  const size_t n = size_t(base.meta.vertex_count) * 3;
+  *trial = base;
+  CodedPayload basis;
+  *coded = K == 0 || quantize_low_rank(pca, K, step, 0, options.threads, trial, &rounded, nullptr, nullptr, &basis,
+                                       BasisCoding::Fast);
+  if (!*coded) return true;
+  const std::vector<int32_t> prediction =
+      K > 0 ? low_rank_prediction(trial->low_rank, basis.values, F, n) : std::vector<int32_t>();
+  return fast_file_bytes(trial, frames, options, K > 0 ? &prediction : nullptr, bytes, error);
+}
+}  // namespace
+
 bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
                           const FastLayerOptions& options, std::string* error) {
   const uint32_t F = m->meta.frame_count;
@@ -50,27 +73,29 @@ bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frame
   base.low_rank = LowRankModel();
   const GridComponents pca =
       grid_components(rounded, F, n, std::min<uint32_t>(kMaxLowRankComponents, F > 1 ? F - 1 : 0), kMeanAnchor);
-  Model best;
-  size_t best_bytes = SIZE_MAX;
+  Model best, trial;
+  size_t best_bytes = SIZE_MAX, bytes = 0;
+  uint32_t best_count = 0;
+  bool coded = true;
   int worse = 0;
   for (uint32_t K : kCounts) {
     if (K > pca.weights.size() || worse >= 2) break;
-    Model trial = base;
-    CodedPayload basis;
-    if (K > 0 && !quantize_low_rank(pca, K, kBasisStep, 0, options.threads, &trial, &rounded, nullptr, nullptr,
-                                    &basis, BasisCoding::Fast))
-      break;
-    const std::vector<int32_t> prediction =
-        K > 0 ? low_rank_prediction(trial.low_rank, basis.values, F, n) : std::vector<int32_t>();
-    size_t bytes = 0;
-    if (!fast_file_bytes(&trial, frames, options, K > 0 ? &prediction : nullptr, &bytes, error)) return false;
+    if (!code_trial(base, pca, K, kBasisStep, frames, rounded, options, &trial, &bytes, &coded, error)) return false;
+    if (!coded) break;
     if (bytes < best_bytes) {
       best_bytes = bytes;
       best = std::move(trial);
+      best_count = K;
       worse = 0;
     } else {
       ++worse;
     }
+  }
+  for (double step = kBasisStep * kStepRatio; best_count > 0 && step <= kMaxBasisStep; step *= kStepRatio) {
+    if (!code_trial(base, pca, best_count, step, frames, rounded, options, &trial, &bytes, &coded, error)) return false;
+    if (!coded || bytes >= best_bytes) break;
+    best_bytes = bytes;
+    best = std::move(trial);
   }
   *m = std::move(best);
   return true;
