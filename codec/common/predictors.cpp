@@ -302,8 +302,8 @@ void position_fit_weights(const int32_t* qg, uint32_t v, const uint32_t* set, ui
 std::vector<int32_t> fit_weights(const Traversal& t, const int32_t* qg) {
   std::vector<int32_t> w(t.fit.size());
   for (uint32_t pos = 0; pos + 1 < uint32_t(t.fit_offsets.size()); ++pos)
-    position_fit_weights(qg, t.order[pos], &t.fit[t.fit_offsets[pos]], t.fit_offsets[pos + 1] - t.fit_offsets[pos],
-                         &w[t.fit_offsets[pos]]);
+    position_fit_weights(qg, t.order[pos], t.fit.data() + t.fit_offsets[pos],
+                         t.fit_offsets[pos + 1] - t.fit_offsets[pos], w.data() + t.fit_offsets[pos]);  // sets may all be empty
   return w;
 }
 
