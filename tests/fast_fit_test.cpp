@@ -55,7 +55,9 @@ TEST(FastFit, SetsHoldOnlyEarlierPositionsNeighboursFirst) {
     const uint32_t begin = fit.offsets[i], end = fit.offsets[i + 1];
     EXPECT_LE(end - begin, kMaxFitPoints);
     for (uint32_t k = begin; k < end; ++k) EXPECT_LT(fit.refs[k], i) << "position " << i;
-    if (end > begin) EXPECT_EQ(fit.weights[begin], 0);
+    if (end > begin) {
+      EXPECT_EQ(fit.weights[begin], 0);
+    }
     full += end - begin >= 6;
   }
   EXPECT_GT(full, size_t(kV) / 2);  // inside the sheet: two rings of earlier vertices

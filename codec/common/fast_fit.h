@@ -29,8 +29,10 @@ FastFit fast_fit(const std::vector<uint32_t>& faces, const FastTraversal& t, con
 
 // What Fit predicts for position i's three axes (p[0..2]) from the corrections e
 // (position-major, 3 per position) of the positions before it: 0 for an empty set, else
-// e(u_0) plus the weighted differences to it. |e| <= 2^33 (a decoder rejects values outside
-// int32 first) and |w| <= 2^20 keep the sums within 2^59.
+// e(u_0) plus the weighted differences to it. The encoder's form (residuals, snapping); the
+// decoder computes the same sums for all of a basis's vectors at once
+// (codec/decompress/fast_fit_decoder.cpp). Basis values (|e| <= 2^24) and |w| <= 2^20 keep
+// the sums within 2^50.
 inline void fast_fit_position(const FastFit& fit, size_t i, const int64_t* e, int64_t* p) {
   const uint32_t begin = fit.offsets[i], end = fit.offsets[i + 1];
   if (begin == end) {

@@ -120,12 +120,6 @@ inline void predict_position(FastSpatial type, const uint32_t* r, const int64_t*
       for (int a = 0; a < 3; ++a) p[a] = 0;
   }
 }
-// A Fit frame's three values at a position (its base kind is None: values are corrections).
-bool basis_values(const int64_t* x) {
-  for (int a = 0; a < 3; ++a)
-    if (x[a] < -kMaxFitValue || x[a] > kMaxFitValue) return false;
-  return true;
-}
 }  // namespace
 
 bool FastChunkDecoder::uses_fit() const { return std::any_of(kinds_.begin(), kinds_.end(), is_fit); }
@@ -133,7 +127,7 @@ bool FastChunkDecoder::uses_fit() const { return std::any_of(kinds_.begin(), kin
 // Spatial frames: in traversal order, each position's residual (zero unless the ops name it)
 // plus what the traversal predicts from the positions before it is the correction of the
 // base prediction. One pass, no buffer to clear.
-bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth, const FastFit* fit) {
+bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth) {
   const FastTraversal& t = *traversal_;
   spatial_.resize(size_t(V_) * 3);
   int64_t* e = spatial_.data();  // position-major
@@ -143,10 +137,7 @@ bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth, const Fa
     FastSpatial type = FastSpatial(t.type[i]);
     if (smooth && type == FastSpatial::Parallelogram) type = FastSpatial::Mean;
     int64_t* x = e + size_t(i) * 3;
-    if (fit)
-      fast_fit_position(*fit, i, e, x);
-    else
-      predict_position(type, &t.refs[size_t(i) * 3], e, x);
+    predict_position(type, &t.refs[size_t(i) * 3], e, x);
     if (i == c.slot) {
       for (int a = 0; a < 3; ++a) {
         int64_t r = 0;
@@ -155,7 +146,6 @@ bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth, const Fa
       }
       if (!c.next()) return false;
     }
-    if (fit && !basis_values(x)) return false;
     int32_t* o = out + size_t(t.order[i]) * 3;
     const int64_t q0 = int64_t(o[0]) + x[0], q1 = int64_t(o[1]) + x[1], q2 = int64_t(o[2]) + x[2];
     // Rejecting q outside int32 also keeps every e within 2^33, so the sums stay small.
@@ -177,9 +167,8 @@ bool FastChunkDecoder::decode_frame(const int32_t* q1, const int32_t* q2, const 
   const bool spatial = has_spatial(k);
   if (spatial && (!traversal_ || traversal_->order.size() != V_))
     return fail(error, "fast residual frame needs the vertex traversal, which was not supplied");
-  if (is_fit(k) && (!fit_ || fit_->offsets.size() != size_t(V_) + 1))
-    return fail(error, "fast residual frame needs Fit weights, which were not supplied");
-  if (!(spatial ? add_spatial_residuals(out, is_smooth(k), is_fit(k) ? fit_ : nullptr) : add_residuals(out)))
+  if (is_fit(k)) return fail(error, "internal error: a Fit frame is decoded by decode_fit_frames");
+  if (!(spatial ? add_spatial_residuals(out, is_smooth(k)) : add_residuals(out)))
     return fail(error, "fast residual frame " + std::to_string(next_) + " is corrupted or decodes out of range");
   return finish_frame(out, error);
 }

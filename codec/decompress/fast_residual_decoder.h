@@ -39,14 +39,14 @@ class FastChunkDecoder {
   // Decodes frame next() into out (V * 3 values): q1, q2 the frames one and two before it,
   // M and M1 the Model prediction of this frame and the one before, each null when its
   // kind does not read it. Checks the frame's checksum, and after the last frame that the
-  // streams were used up.
+  // streams were used up. Not for a Fit frame (decode_fit_frames).
   bool decode_frame(const int32_t* q1, const int32_t* q2, const int32_t* M, const int32_t* M1, int32_t* out,
                     std::string* error);
   size_t memory_bytes() const;
 
  private:
   bool add_residuals(int32_t* out);
-  bool add_spatial_residuals(int32_t* out, bool smooth, const FastFit* fit);
+  bool add_spatial_residuals(int32_t* out, bool smooth);
   bool finish_frame(const int32_t* out, std::string* error);
 
   const FastTraversal* traversal_ = nullptr;

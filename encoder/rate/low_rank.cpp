@@ -253,9 +253,10 @@ std::vector<uint8_t> code_mean_and_basis_fast(const Model& model, std::vector<in
       kinds[0] = kind;
     }
   }
-  // A vector's bytes are measured as frame 1 of a chunk after the mean, which Fit reads.
-  std::vector<int32_t> pair(values.begin(), values.begin() + std::ptrdiff_t(n));
-  pair.resize(2 * n);
+  // A vector's bytes are measured as frame 1 of a chunk (Fit needs a frame before it; its
+  // weights are the mean's, passed in) after a zero frame, which codes to almost nothing:
+  // the mean is not coded again for every kind of every vector.
+  std::vector<int32_t> pair(2 * n, 0);
   int32_t* trial = pair.data() + n;
   for (uint32_t k = 1; k < frames; ++k) {
     int32_t* plane = values.data() + k * n;
@@ -263,7 +264,7 @@ std::vector<uint8_t> code_mean_and_basis_fast(const Model& model, std::vector<in
     for (const uint8_t kind : {kSpatialFlag, uint8_t(kSpatialFlag | kSmoothFlag), uint8_t(kSpatialFlag | kFitFlag)}) {
       std::copy(plane, plane + n, trial);
       if (!exact.empty()) snap_plane_fast(t, fit, exact.data() + (k - 1) * n, kind, trial);
-      const uint8_t pair_kinds[2] = {kinds[0], kind};
+      const uint8_t pair_kinds[2] = {kSpatialFlag, kind};
       const size_t bytes = encode_fast_chunk(t, V, pair_kinds, 2, pair.data(), nullptr, &fit).size();
       if (bytes < best) {
         best = bytes;
