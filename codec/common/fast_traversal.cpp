@@ -45,7 +45,7 @@ FastTraversal fast_traversal(const std::vector<uint32_t>& faces, uint32_t V) {
   b.t.type.reserve(V);
   b.t.refs.reserve(size_t(V) * 3);
   FlatIndex edges;
-  edges.reserve(faces.size());
+  edges.reserve(faces.size() / 2);  // a closed mesh's edges; an open one grows once or twice
   for (size_t k = 0; k + 2 < faces.size(); k += 3) {
     const uint32_t x = faces[k], y = faces[k + 1], z = faces[k + 2];
     b.reach(x, y, z, edges);

@@ -45,15 +45,19 @@ class FlatIndex {
   }
   // Room for n keys without growing.
   void reserve(size_t n) {
-    while (keys_.size() < 2 * n + 2) grow();
+    size_t slots = keys_.empty() ? 16 : keys_.size();
+    while (slots < 2 * n + 2) slots *= 2;
+    if (slots > keys_.size()) rehash(slots);
   }
   size_t size() const { return size_; }
   size_t bytes() const { return keys_.capacity() * 8 + values_.capacity() * 4; }
 
  private:
   // Twice the slots (at least 16), every key placed again.
-  void grow() {
-    std::vector<uint64_t> keys(keys_.empty() ? 16 : 2 * keys_.size(), kEmpty);
+  void grow() { rehash(keys_.empty() ? 16 : 2 * keys_.size()); }
+  // `slots` (a power of two) slots, every key placed again.
+  void rehash(size_t slots) {
+    std::vector<uint64_t> keys(slots, kEmpty);
     std::vector<uint32_t> values(keys.size());
     keys.swap(keys_);
     values.swap(values_);

@@ -86,28 +86,35 @@ void add_neighbour_sets(const std::vector<uint32_t>& off, const std::vector<uint
   Traversal& t = *out;
   const uint32_t V = uint32_t(t.order.size());
   t.nb_offsets.assign(size_t(V) + 1, 0);
+  t.nb.reserve(adj.size() / 2);  // each edge once, at its later end
   for (uint32_t i = 0; i < V; ++i) {
     const uint32_t v = t.order[i];
     for (uint32_t k = off[v]; k < off[v + 1]; ++k)
       if (pos[adj[k]] < i) t.nb.push_back(adj[k]);
     t.nb_offsets[i + 1] = uint32_t(t.nb.size());
   }
+  std::vector<uint32_t> ring(adj.size()), seen(V, UINT32_MAX);  // seen[w] = i: w is in position i's set
+
   t.fit_offsets.assign(size_t(V) + 1, 0);
-  std::vector<uint32_t> ring, seen(V, UINT32_MAX);  // seen[w] = i: w is in position i's set
+  t.fit.reserve(size_t(V) * kMaxFitPoints);
   for (uint32_t i = 0; i < V; ++i) {
     const uint32_t v = t.order[i], nb_begin = t.nb_offsets[i], nb_end = t.nb_offsets[i + 1];
     seen[v] = i;
     for (uint32_t k = nb_begin; k < nb_end; ++k) seen[t.nb[k]] = i;
-    ring.clear();
+    // Branch-free: every second neighbour is written, kept when earlier and new. Marking a
+    // later one seen is harmless (it is never kept for i). The ring never outgrows adj.
+    size_t n = 0;
     for (uint32_t k = nb_begin; k < nb_end; ++k)
-      for (uint32_t j = off[t.nb[k]]; j < off[t.nb[k] + 1]; ++j)
-        if (pos[adj[j]] < i && seen[adj[j]] != i) {
-          seen[adj[j]] = i;
-          ring.push_back(adj[j]);
-        }
-    std::sort(ring.begin(), ring.end());
+      for (uint32_t j = off[t.nb[k]]; j < off[t.nb[k] + 1]; ++j) {
+        const uint32_t w = adj[j];
+        const bool keep = (pos[w] < i) & (seen[w] != i);
+        seen[w] = i;
+        ring[n] = w;
+        n += keep;
+      }
+    std::sort(ring.begin(), ring.begin() + std::ptrdiff_t(n));
     t.fit.insert(t.fit.end(), t.nb.begin() + nb_begin, t.nb.begin() + nb_end);
-    t.fit.insert(t.fit.end(), ring.begin(), ring.end());
+    t.fit.insert(t.fit.end(), ring.begin(), ring.begin() + std::ptrdiff_t(n));
     t.fit.resize(std::min<size_t>(t.fit.size(), t.fit_offsets[i] + kMaxFitPoints));
     t.fit_offsets[i + 1] = uint32_t(t.fit.size());
   }
@@ -234,11 +241,12 @@ void triple_weights(const int32_t* qg, uint32_t v, uint32_t a, uint32_t b, uint3
   w[1] = clamp_weight(detail::rounded_mean(kGeometricUnit * (g11 * r2 - g12 * r1), det));
 }
 
-// floor(a / b) for b > 0 and |a| < 2^62: a binary64 quotient as the first guess, then made
-// exact in int64. The same result as integer division on every platform (the guess only
-// seeds it), and several times faster than a 64-bit divide, which dominates the weights.
-int64_t floor_div(int64_t a, int64_t b) {
-  int64_t q = int64_t(std::floor(double(a) / double(b)));
+// floor(a / b) for b > 0 and |a| < 2^62, given inverse = 1 / b: a binary64 quotient as the
+// first guess, then made exact in int64. The same result as integer division on every
+// platform (the guess only seeds it), and several times faster than a 64-bit divide, which
+// dominates the weights; one inverse serves every weight of a set.
+int64_t floor_div(int64_t a, int64_t b, double inverse) {
+  int64_t q = int64_t(double(a) * inverse);  // truncated, not floored: no libm call
   int64_t r = a - q * b;
   while (r < 0) --q, r += b;
   while (r >= b) ++q, r -= b;
@@ -289,11 +297,12 @@ void position_fit_weights(const int32_t* qg, uint32_t v, const uint32_t* set, ui
   if (den <= 0) return;  // cannot happen (C exceeds sum d d^T), but no division by it then
   const int scale = std::max(0, bit_length(den) - 30);
   const int64_t den_scaled = floor_shift(den, scale);
+  const double inverse = 1.0 / double(2 * den_scaled);
   for (uint32_t j = 1; j < n; ++j) {
     const int64_t num = det - (tv[0] * d[j][0] + tv[1] * d[j][1] + tv[2] * d[j][2]);
     const int64_t num_scaled = std::clamp<int64_t>(floor_shift(num, scale), -(int64_t(1) << 40), int64_t(1) << 40);
     // rounded_mean(num_scaled * kFitUnit, den_scaled): floor((2 x + d) / (2 d)).
-    const int64_t w_j = floor_div(2 * num_scaled * kFitUnit + den_scaled, 2 * den_scaled);
+    const int64_t w_j = floor_div(2 * num_scaled * kFitUnit + den_scaled, 2 * den_scaled, inverse);
     w[j] = int32_t(std::clamp(w_j, -kFitLimit, kFitLimit));
   }
 }

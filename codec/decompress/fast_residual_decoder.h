@@ -52,8 +52,6 @@ class FastChunkDecoder {
   const FastTraversal* traversal_ = nullptr;
   const FastFit* fit_ = nullptr;
   std::vector<int64_t> spatial_;  // per vertex and axis: residuals, then what the traversal predicts
-  std::vector<int32_t> lanes_;    // decode_fit_frames: per position, the frames' values side by side
-  std::vector<int64_t> sums_;
   uint32_t V_ = 0, next_ = 0;
   std::vector<uint8_t> kinds_;
   std::vector<uint32_t> op_counts_, checksums_;
