@@ -3,7 +3,6 @@
 // one pass over the positions reads each set once and applies it to all of them: a tight loop
 // over contiguous lanes instead of a gather per vector.
 #include <algorithm>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -90,13 +89,15 @@ bool FastChunkDecoder::decode_fit_frames(uint32_t count, int32_t* out, std::stri
     cursors.push_back(OpCursor{ops_, starts.op_begin[j], starts.op_begin[j + 1], V_});
     if (!cursors.back().next()) return fail(error, "fast residual frame " + std::to_string(next_ + j) + " is corrupted");
   }
-  // Per position, the frames' values side by side; every lane is written before it is read,
-  // so the buffer is left uninitialized (no pass over megabytes of zeros).
-  const std::unique_ptr<int32_t[]> lanes(new int32_t[size_t(V_) * L]);
+  if (lanes_size_ < size_t(V_) * L) {
+    lanes_size_ = size_t(V_) * L;
+    lanes_.reset(new int32_t[lanes_size_]);
+  }
+  int32_t* lanes = lanes_.get();
   std::vector<int64_t> sums(L);
   for (uint32_t p = 0; p < V_; ++p) {
     int64_t* v = sums.data();  // predictions, then values
-    predict_lanes(*fit_, p, lanes.get(), L, v);
+    predict_lanes(*fit_, p, lanes, L, v);
     for (uint32_t j = 0; j < count; ++j) {
       OpCursor& c = cursors[j];
       if (c.slot != p) continue;
@@ -108,7 +109,7 @@ bool FastChunkDecoder::decode_fit_frames(uint32_t count, int32_t* out, std::stri
       }
       if (!c.next()) return fail(error, "fast residual frame " + std::to_string(next_ + j) + " is corrupted");
     }
-    int32_t* x = lanes.get() + size_t(p) * L;
+    int32_t* x = lanes + size_t(p) * L;
     for (size_t l = 0; l < L; ++l) {
       if (v[l] < -kMaxFitValue || v[l] > kMaxFitValue)
         return fail(error, "fast residual frame " + std::to_string(next_ + l / 3) + " decodes out of range");

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,10 @@ class FastChunkDecoder {
   const FastTraversal* traversal_ = nullptr;
   const FastFit* fit_ = nullptr;
   std::vector<int64_t> spatial_;  // per vertex and axis: residuals, then what the traversal predicts
+  // decode_fit_frames: per position, the frames' values side by side (uninitialized: every
+  // lane is written before it is read), kept for the next group of Fit frames.
+  std::unique_ptr<int32_t[]> lanes_;
+  size_t lanes_size_ = 0;
   uint32_t V_ = 0, next_ = 0;
   std::vector<uint8_t> kinds_;
   std::vector<uint32_t> op_counts_, checksums_;
