@@ -32,7 +32,8 @@ std::vector<uint32_t> roundtrip_faces(const std::vector<uint32_t>& faces, FaceOr
   std::vector<uint8_t> bytes = encode_faces(faces, order);
   std::vector<uint32_t> back;
   std::string err;
-  EXPECT_TRUE(decode_faces(bytes.data(), bytes.size(), &back, &err)) << err;
+  const uint32_t V = faces.empty() ? 0 : *std::max_element(faces.begin(), faces.end()) + 1;
+  EXPECT_TRUE(decode_faces(bytes.data(), bytes.size(), V, &back, &err)) << err;
   return back;
 }
 
@@ -89,20 +90,20 @@ TEST(FacesCodec, RejectsEveryTruncationAndBadOps) {
   std::string err;
   for (FaceOrder order : {FaceOrder::Exact, FaceOrder::Traversal}) {
     std::vector<uint8_t> bytes = encode_faces(m.faces, order);
-    for (size_t n = 0; n < bytes.size(); ++n) EXPECT_FALSE(decode_faces(bytes.data(), n, &out, &err)) << n;
+    for (size_t n = 0; n < bytes.size(); ++n) EXPECT_FALSE(decode_faces(bytes.data(), n, m.meta.vertex_count, &out, &err)) << n;
   }
   // An op that names an edge the history does not hold yet (first triangle).
   std::vector<uint8_t> bad = {0, 1, 0x80 | (3 << 3)};
-  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), m.meta.vertex_count, &out, &err));
   EXPECT_NE(err.find("edge"), std::string::npos) << err;
   bad = {0, 1, 0x40 | 7};  // reserved bits
-  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), m.meta.vertex_count, &out, &err));
   bad = {0, 200, 1};  // more triangles than bytes
-  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), m.meta.vertex_count, &out, &err));
   bad = {1, 1, 1, 2, 0, 2, 2};  // traversal symbol 2
-  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), m.meta.vertex_count, &out, &err));
   bad = {9, 0};  // unknown layout
-  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), m.meta.vertex_count, &out, &err));
   EXPECT_NE(err.find("layout"), std::string::npos) << err;
 }
 

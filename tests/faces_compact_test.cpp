@@ -2,11 +2,13 @@
 // figure that could regress, and rejection of truncated or damaged payloads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <random>
 #include <set>
 
 #include "codec/common/faces.h"
+#include "codec/common/faces_compact_walk.h"
 #include "codec/common/id_ranks.h"
 #include "codec/compress/faces_encoder.h"
 #include "codec/decompress/faces_decoder.h"
@@ -15,6 +17,10 @@
 namespace dcurve {
 namespace {
 
+// The vertex count the hostile streams below are decoded for: room for the grid's ids and
+// for a corrupted stream to name ids far from them.
+constexpr uint32_t kGridVertices = 1u << 16;
+
 std::vector<uint32_t> compact_roundtrip(const std::vector<uint32_t>& faces, size_t* bytes = nullptr) {
   std::vector<uint8_t> coded = encode_faces(faces, FaceOrder::Compact);
   EXPECT_FALSE(coded.empty());
@@ -22,7 +28,8 @@ std::vector<uint32_t> compact_roundtrip(const std::vector<uint32_t>& faces, size
   if (bytes) *bytes = coded.size();
   std::vector<uint32_t> back;
   std::string err;
-  EXPECT_TRUE(decode_faces(coded.data(), coded.size(), &back, &err)) << err;
+  const uint32_t V = faces.empty() ? 0 : *std::max_element(faces.begin(), faces.end()) + 1;
+  EXPECT_TRUE(decode_faces(coded.data(), coded.size(), V, &back, &err)) << err;
   return back;
 }
 
@@ -45,14 +52,17 @@ std::vector<uint32_t> grid(uint32_t W, uint32_t H, uint32_t base) {
   return f;
 }
 
-// Ranks among unused ids against a plain std::set count, at both ends of the id range.
+// Ranks among unused ids against a plain std::set count, at both ends of the bound and of
+// the id range (ids above the bound are all unused).
 TEST(IdRanks, RankAndUnrankMatchACountingOracle) {
   const int64_t top = int64_t(UINT32_MAX) - 1;
+  const uint32_t bound = (1u << 20) + 4100;  // blocks of 4096 ids: a partial last one
   std::mt19937 rng(5);
-  IdRanks ids;
+  IdRanks ids(bound);
   std::set<int64_t> used;
   for (int i = 0; i < 600; ++i) used.insert(rng() % 2000);
-  for (int64_t v : {top, top - 2, int64_t(0), int64_t(1) << 20, (int64_t(1) << 20) + 1}) used.insert(v);
+  for (int i = 0; i < 300; ++i) used.insert((int64_t(1) << 20) - 5000 + rng() % 9100);
+  for (int64_t v : {int64_t(0), int64_t(1) << 20, (int64_t(1) << 20) + 1, int64_t(bound) - 1}) used.insert(v);
   for (int64_t v : used) ids.insert(uint32_t(v));
   auto used_in = [&](int64_t lo, int64_t hi) {
     return int64_t(std::distance(used.lower_bound(lo), used.upper_bound(hi)));
@@ -64,9 +74,12 @@ TEST(IdRanks, RankAndUnrankMatchACountingOracle) {
     return x > from ? n : -n;
   };
   EXPECT_EQ(ids.count_below(uint64_t(1) << 32), used.size());
-  for (int64_t from : {int64_t(-7), int64_t(0), int64_t(5), int64_t(999), int64_t(1) << 20, top - 1, top + 1}) {
+  for (int64_t y = (int64_t(1) << 20) - 5100; y <= int64_t(bound) + 10; ++y)  // across words, blocks, the bound
+    ASSERT_EQ(int64_t(ids.count_below(uint64_t(y))), used_in(0, y - 1)) << y;
+  const int64_t near_end = int64_t(1) << 20, last = int64_t(bound) - 1;
+  for (int64_t from : {int64_t(-7), int64_t(0), int64_t(5), int64_t(999), near_end, last, last + 1, top - 1, top + 1}) {
     for (int64_t x = 0; x < 2100; x += 7)
-      for (int64_t probe : {x, top - 1, top - 3, (int64_t(1) << 20) + 2}) {
+      for (int64_t probe : {x, top - 1, top - 3, near_end + 2, near_end - 4097 + x, last - 1, last + 1, last + 2}) {
         if (used.count(probe)) continue;
         const int64_t r = ids.rank(from, uint32_t(probe));
         ASSERT_EQ(r, oracle(from, probe)) << from << " " << probe;
@@ -81,6 +94,26 @@ TEST(IdRanks, RankAndUnrankMatchACountingOracle) {
   uint32_t out = 0;
   EXPECT_FALSE(ids.unrank(top + 1, 0, &out));  // rank 0 names the prediction itself: out of range
   EXPECT_FALSE(ids.unrank(-1, 0, &out));
+}
+
+// A vertex reached again (a known id coded outside the candidate list) keeps the border
+// edges it had: encoder and decoder would both forget them alike, so a round trip cannot
+// tell, but every file written before would then decode to other triangles.
+TEST(FacesCompact, RegionKeepsAVertexsEdgesWhenItIsSeenAgain) {
+  faces_compact_walk::Region region(10);
+  const uint32_t tri[3] = {0, 1, 2};
+  for (uint32_t v : tri) region.mark_seen(v);
+  region.add_triangle(tri);
+  uint32_t cand[faces_compact_walk::kMaxCandidates];
+  int from_a = 0;
+  ASSERT_EQ(region.candidates(0, 1, cand, &from_a), 1);  // the open edge 2 -> 0 offers vertex 2
+  EXPECT_EQ(cand[0], 2u);
+  region.mark_seen(2);
+  region.mark_seen(0);
+  ASSERT_EQ(region.candidates(0, 1, cand, &from_a), 1);
+  EXPECT_EQ(cand[0], 2u);
+  EXPECT_EQ(region.fan(2), 1);
+  EXPECT_EQ(region.ids().count_below(10), 3u);
 }
 
 TEST(FacesCompact, RoundTripsCorpusMeshesInBothOrders) {
@@ -141,7 +174,7 @@ TEST(FacesCompact, RejectsTruncationsFlipsAndAbsurdCounts) {
   const std::vector<uint8_t> bytes = encode_faces(faces, FaceOrder::Compact);
   std::vector<uint32_t> out;
   std::string err;
-  for (size_t n = 0; n < bytes.size(); ++n) EXPECT_FALSE(decode_faces(bytes.data(), n, &out, &err)) << n;
+  for (size_t n = 0; n < bytes.size(); ++n) EXPECT_FALSE(decode_faces(bytes.data(), n, kGridVertices, &out, &err)) << n;
   // Single-byte changes of the stream: each is either rejected or decodes to some list;
   // none may crash or read outside (run under ASan). Most must be caught.
   size_t rejected = 0, tried = 0;
@@ -150,18 +183,18 @@ TEST(FacesCompact, RejectsTruncationsFlipsAndAbsurdCounts) {
       std::vector<uint8_t> bad = bytes;
       bad[i] ^= uint8_t(1 << bit);
       ++tried;
-      const bool ok = decode_faces(bad.data(), bad.size(), &out, &err);
+      const bool ok = decode_faces(bad.data(), bad.size(), kGridVertices, &out, &err);
       rejected += !ok;
       EXPECT_TRUE(!ok || out.size() % 3 == 0);
     }
   EXPECT_GT(rejected * 2, tried);
   std::vector<uint8_t> bad = {2, 0xFF, 0xFF, 0x03, 0, 0, 0, 0, 0};  // 65535 triangles from 5 bytes
-  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), kGridVertices, &out, &err));
   EXPECT_NE(err.find("count"), std::string::npos) << err;
   bad = {2, 0x80};  // truncated count
-  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), kGridVertices, &out, &err));
   bad = {2, 0x10, 0, 0, 0, 0, 0};  // 16 triangles from an all-zero stream
-  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), &out, &err));
+  EXPECT_FALSE(decode_faces(bad.data(), bad.size(), kGridVertices, &out, &err));
   // Random streams: any outcome but a crash, and never more triangles than claimed.
   std::mt19937 rng(3);
   for (int i = 0; i < 3000; ++i) {
@@ -169,7 +202,7 @@ TEST(FacesCompact, RejectsTruncationsFlipsAndAbsurdCounts) {
     for (auto& b : noise) b = uint8_t(rng());
     noise[0] = 2;
     noise[1] = uint8_t(rng() % 100);
-    const bool ok = decode_faces(noise.data(), noise.size(), &out, &err);
+    const bool ok = decode_faces(noise.data(), noise.size(), kGridVertices, &out, &err);
     EXPECT_TRUE(!ok || out.size() == size_t(noise[1]) * 3);
   }
 }

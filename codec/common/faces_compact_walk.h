@@ -65,16 +65,21 @@ struct Models {
 // edges out, and per vertex its most recent incoming and outgoing edges.
 class Region {
  public:
-  bool seen(uint32_t v) const { return slot_.contains(v); }
+  // Vertex ids below `bound` (the file's vertex count): per-vertex state is a flat array.
+  explicit Region(uint32_t bound) : slot_(bound, kUnseen), ids_(bound) {}
+  uint32_t bound() const { return ids_.bound(); }
+  bool seen(uint32_t v) const { return v < slot_.size() && slot_[v] != kUnseen; }
+  // v < bound(); no effect when already seen.
   void mark_seen(uint32_t v) {
-    if (slot_.insert(v, uint32_t(rings_.size()))) rings_.emplace_back();
+    if (slot_[v] != kUnseen) return;
+    slot_[v] = uint32_t(rings_.size());
+    rings_.emplace_back();
     ids_.insert(v);
   }
   const IdRanks& ids() const { return ids_; }
   // Room for about `triangles` triangles of a closed mesh (half as many vertices).
   void reserve(size_t triangles) {
-    slot_.reserve(triangles / 2 + 3);
-    rings_.reserve(triangles / 2 + 3);
+    rings_.reserve(std::min<size_t>(triangles / 2 + 3, slot_.size()));
     edges_.reserve(3 * triangles);
   }
   // Triangles out around v so far, clamped to kFanClasses - 1.
@@ -118,15 +123,15 @@ class Region {
   struct Rings {
     Recent into, from;
   };
-  // Only for seen vertices (as std::map::at, a missing one is a logic error, not UB).
+  static constexpr uint32_t kUnseen = UINT32_MAX;
+  // Only for seen vertices (as std::vector::at, a missing one is a logic error, not UB).
   uint32_t slot(uint32_t v) const {
-    const uint32_t s = slot_.find(v);
-    if (s == FlatIndex::kMissing) throw std::out_of_range("faces_compact_walk: vertex not seen");
-    return s;
+    if (!seen(v)) throw std::out_of_range("faces_compact_walk: vertex not seen");
+    return slot_[v];
   }
   Rings& ring(uint32_t v) { return rings_[slot(v)]; }
   const Rings& ring(uint32_t v) const { return rings_[slot(v)]; }
-  FlatIndex slot_;  // vertex id -> its Rings
+  std::vector<uint32_t> slot_;  // vertex id -> its Rings, or kUnseen
   std::vector<Rings> rings_;
   FlatIndex edges_;  // directed edges out (values unused)
   IdRanks ids_;
@@ -139,7 +144,7 @@ class Region {
 
 // Checks a coded id against what its flag claims and marks it seen.
 inline bool accept(Region& region, int64_t id, bool is_new, std::string* error) {
-  if (id < 0 || id > kMaxVertexId) return fail(error, "face vertex id out of range");
+  if (id < 0 || id >= int64_t(region.bound())) return fail(error, "face vertex id out of range");
   if (is_new == region.seen(uint32_t(id)))
     return fail(error, is_new ? "face vertex coded as new was already used" : "face vertex coded as known was never used");
   region.mark_seen(uint32_t(id));
@@ -189,11 +194,12 @@ class NewIds {
 };
 
 // The breadth-first traversal both sides run (format_spec/dcrv.md 6.3). Encoding, `list`
-// holds the T triangles to code; decoding, they are appended to it.
+// holds the T triangles to code; decoding, they are appended to it. Every id is below
+// `bound` (the vertex count; a decoder rejects any other as soon as it is read).
 template <class Io>
-bool traverse(Io& io, uint64_t T, std::vector<uint32_t>* list, std::string* error) {
+bool traverse(Io& io, uint64_t T, uint32_t bound, std::vector<uint32_t>* list, std::string* error) {
   Models m;
-  Region region;
+  Region region(bound);
   region.reserve(size_t(std::min<uint64_t>(T, 1u << 16)));  // a few MB at most before any decoding
   NewIds new_ids;
   int64_t ref = 0;  // the last id coded at a component start

@@ -1,54 +1,49 @@
 #include "codec/common/id_ranks.h"
 
 #include <algorithm>
-#include <bitset>
+#include <stdexcept>
 
 namespace dcurve {
+namespace {
+// Set bits of x without a library call (x86-64's baseline has no popcnt instruction).
+inline uint32_t popcount64(uint64_t x) {
+  x -= (x >> 1) & 0x5555555555555555u;
+  x = (x & 0x3333333333333333u) + ((x >> 2) & 0x3333333333333333u);
+  x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0fu;
+  return uint32_t((x * 0x0101010101010101u) >> 56);
+}
+}  // namespace
 
-void IdRanks::Fenwick::add(size_t i) {
-  for (size_t j = i + 1; j < sum.size(); j += j & (~j + 1)) ++sum[j];
+IdRanks::IdRanks(uint32_t bound)
+    : bound_(bound),
+      bits_((size_t(bound) + 63) / 64, 0),
+      word_before_(bits_.size(), 0),
+      blocks_((bits_.size() >> kBlockWordsBits) + 2, 0) {}
+
+bool IdRanks::contains(uint32_t id) const { return id < bound_ && (bits_[id / 64] >> (id % 64)) & 1; }
+
+void IdRanks::insert(uint32_t id) {
+  if (id >= bound_) throw std::out_of_range("IdRanks: id at or above the bound");
+  if (contains(id)) return;
+  const size_t word = id / 64, block = word >> kBlockWordsBits;
+  bits_[word] |= uint64_t(1) << (id % 64);
+  const size_t block_end = std::min(bits_.size(), (block + 1) << kBlockWordsBits);
+  for (size_t w = word + 1; w < block_end; ++w) ++word_before_[w];
+  for (size_t j = block + 1; j < blocks_.size(); j += j & (~j + 1)) ++blocks_[j];
+  ++total_;
 }
 
-uint64_t IdRanks::Fenwick::below(size_t i) const {
+uint64_t IdRanks::block_below(size_t block) const {
   uint64_t s = 0;
-  for (size_t j = i; j > 0; j -= j & (~j + 1)) s += sum[j];
+  for (size_t j = block; j > 0; j -= j & (~j + 1)) s += blocks_[j];
   return s;
 }
 
-IdRanks::IdRanks() : top_(size_t(1) << kTopBits) {}
-
-bool IdRanks::contains(uint32_t id) const {
-  const uint32_t at = low_of_.find(id >> kLowBits);
-  if (at == FlatIndex::kMissing) return false;
-  const uint32_t low = id & ((1u << kLowBits) - 1);
-  return (lows_[at].bits[low / 64] >> (low % 64)) & 1;
-}
-
-void IdRanks::insert(uint32_t id) {
-  if (contains(id)) return;
-  const uint32_t top = id >> (kMidBits + kLowBits), mid = (id >> kLowBits) & ((1u << kMidBits) - 1);
-  const uint32_t low = id & ((1u << kLowBits) - 1);
-  top_.add(top);
-  if (mid_of_.insert(top, uint32_t(mids_.size()))) mids_.emplace_back(size_t(1) << kMidBits);
-  mids_[mid_of_.find(top)].add(mid);
-  if (low_of_.insert(id >> kLowBits, uint32_t(lows_.size()))) lows_.emplace_back();
-  Low& l = lows_[low_of_.find(id >> kLowBits)];
-  l.bits[low / 64] |= uint64_t(1) << (low % 64);
-  for (uint32_t w = low / 64 + 1; w < (1u << kLowBits) / 64; ++w) ++l.before[w];
-}
-
 uint64_t IdRanks::count_below(uint64_t y) const {
-  if (y >> 32) return top_.below(top_.sum.size() - 1);
-  const uint32_t top = uint32_t(y >> (kMidBits + kLowBits)), mid = uint32_t(y >> kLowBits) & ((1u << kMidBits) - 1);
-  const uint32_t low = uint32_t(y) & ((1u << kLowBits) - 1);
-  uint64_t n = top_.below(top);
-  const uint32_t m = mid_of_.find(top);
-  if (m != FlatIndex::kMissing) n += mids_[m].below(mid);
-  const uint32_t l = low_of_.find(uint32_t(y >> kLowBits));
-  if (l != FlatIndex::kMissing) {
-    n += lows_[l].before[low / 64];
-    if (low % 64) n += std::bitset<64>(lows_[l].bits[low / 64] & ((uint64_t(1) << (low % 64)) - 1)).count();
-  }
+  if (y >= bound_) return total_;
+  const size_t word = size_t(y / 64);
+  uint64_t n = block_below(word >> kBlockWordsBits) + word_before_[word];
+  if (y % 64) n += popcount64(bits_[word] & ((uint64_t(1) << (y % 64)) - 1));
   return n;
 }
 

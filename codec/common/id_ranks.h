@@ -1,13 +1,12 @@
-// A growing set of vertex ids (each in [0, 2^32 - 2]) that answers "how many ids below y"
-// in a few dozen steps whatever the ids, so the FACE Compact coder can code a new vertex's
-// id by its rank among the ids NOT yet used: on a mesh whose ids follow its surface, most
-// ids near a gate are already used, and skipping them makes the coded numbers much smaller.
+// A growing set of vertex ids below a bound (the file's vertex count) that answers "how many
+// ids below y" in a few steps, so the FACE Compact coder can code a new vertex's id by its
+// rank among the ids NOT yet used in [0, 2^32 - 2]: on a mesh whose ids follow its surface,
+// most ids near a gate are already used, and skipping them makes the coded numbers much
+// smaller. Ids at or above the bound are never inserted, so they all count as unused.
 #pragma once
 #include <cstddef>
 #include <cstdint>
 #include <vector>
-
-#include "codec/common/flat_index.h"
 
 namespace dcurve {
 
@@ -16,9 +15,11 @@ constexpr int64_t kMaxVertexId = int64_t(UINT32_MAX) - 1;
 
 class IdRanks {
  public:
-  IdRanks();
-  bool contains(uint32_t id) const;
-  void insert(uint32_t id);  // no effect when already present
+  // Room for ids in [0, bound): bound / 8 bytes of bits and a few percent more.
+  explicit IdRanks(uint32_t bound);
+  uint32_t bound() const { return bound_; }
+  bool contains(uint32_t id) const;  // false at or above the bound
+  void insert(uint32_t id);          // id < bound(); no effect when already present
   // Ids in the set that are < y, for y in [0, 2^32].
   uint64_t count_below(uint64_t y) const;
   // Ids in [0, 2^32 - 2] NOT in the set, inside the inclusive range [lo, hi] (clipped).
@@ -30,27 +31,18 @@ class IdRanks {
   bool unrank(int64_t from, int64_t rank, uint32_t* id) const;
 
  private:
-  static constexpr int kTopBits = 12, kMidBits = 10, kLowBits = 10;
-  struct Fenwick {
-    std::vector<uint32_t> sum;
-    explicit Fenwick(size_t n) : sum(n + 1, 0) {}
-    void add(size_t i);                // one more at index i
-    uint64_t below(size_t i) const;    // total at indices < i
-  };
-  Fenwick top_;                                   // per top bucket
-  // Per used top bucket (found through mid_of_): per mid bucket.
-  FlatIndex mid_of_;
-  std::vector<Fenwick> mids_;
-  // Per used (top, mid): the ids' bits, 64 per word, and per word the ids in earlier words.
-  struct Low {
-    uint64_t bits[(1u << kLowBits) / 64] = {};
-    uint16_t before[(1u << kLowBits) / 64] = {};
-  };
-  FlatIndex low_of_;  // (top, mid) -> its Low
-  std::vector<Low> lows_;
+  // Blocks of 64 words (4096 ids): a Fenwick tree counts the ids of earlier blocks, and per
+  // word the ids of the block's earlier words, so a count is a few steps and a popcount.
+  static constexpr int kBlockWordsBits = 6;
+  uint64_t block_below(size_t block) const;
   // Ids in [0, y) given count_below(first) for some first <= y: the binary searches of
   // unrank keep one end fixed.
   uint64_t free_from(int64_t first, uint64_t used_before_first, int64_t last) const;
+  uint32_t bound_;
+  uint64_t total_ = 0;
+  std::vector<uint64_t> bits_;
+  std::vector<uint16_t> word_before_;  // ids in the block's words before this one
+  std::vector<uint32_t> blocks_;       // Fenwick tree over the blocks (1-based)
 };
 
 }  // namespace dcurve

@@ -1,5 +1,7 @@
 #include "codec/compress/faces_compact_encoder.h"
 
+#include <algorithm>
+
 #include "codec/common/bytes.h"
 #include "codec/common/faces_compact_walk.h"
 #include "codec/compress/range_encoder.h"
@@ -32,7 +34,8 @@ bool encode_compact_faces(const std::vector<uint32_t>& faces, std::vector<uint8_
   const uint64_t T = faces.size() / 3;
   std::vector<uint32_t> list(faces.begin(), faces.begin() + ptrdiff_t(3 * T));
   EncodeIo io;
-  traverse(io, T, &list, nullptr);
+  const uint32_t bound = list.empty() ? 0 : *std::max_element(list.begin(), list.end()) + 1;  // ids <= 2^32 - 2
+  traverse(io, T, bound, &list, nullptr);
   const std::vector<uint8_t>& stream = io.enc.finish();
   if (T > triangle_bound(stream.size())) return false;
   ByteWriter w;

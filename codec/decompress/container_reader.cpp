@@ -255,7 +255,9 @@ bool read_container_head(const uint8_t* data, size_t size, uint64_t file_bytes, 
     else if (tag == kFaces) {
       if (infos && !raw.empty()) infos->back().face_layout = raw[0];
       std::string why;
-      if (!decode_faces(raw.data(), raw.size(), &model->faces, &why)) return fail(error, "section FACE: " + why);
+      if (!seen[0]) return fail(error, "missing required section META before FACE");  // FACE needs its vertex count
+      if (!decode_faces(raw.data(), raw.size(), model->meta.vertex_count, &model->faces, &why))
+        return fail(error, "section FACE: " + why);
       s.take(raw.size());
       ok = true;
     }

@@ -26,7 +26,8 @@ struct DecodeIo {
 
 }  // namespace
 
-bool decode_compact_faces(const uint8_t* data, size_t size, std::vector<uint32_t>* faces, std::string* error) {
+bool decode_compact_faces(const uint8_t* data, size_t size, uint32_t vertex_count, std::vector<uint32_t>* faces,
+                          std::string* error) {
   ByteReader r(data, size);
   const uint64_t T = r.varint();
   if (!r.ok) return fail(error, "face count is truncated");
@@ -34,7 +35,7 @@ bool decode_compact_faces(const uint8_t* data, size_t size, std::vector<uint32_t
   DecodeIo io(data + r.position(), r.remaining());
   faces->clear();
   faces->reserve(size_t(std::min<uint64_t>(T, 1u << 20)) * 3);
-  if (!traverse(io, T, faces, error)) return false;
+  if (!traverse(io, T, vertex_count, faces, error)) return false;
   if (!io.dec.at_clean_end()) return fail(error, "face stream is truncated or has corrupt trailing bytes");
   return true;
 }

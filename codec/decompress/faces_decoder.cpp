@@ -106,7 +106,8 @@ bool decode_traversal(ByteReader& r, std::vector<uint32_t>* faces, std::string* 
 
 }  // namespace
 
-bool decode_faces(const uint8_t* bytes, size_t size, std::vector<uint32_t>* faces, std::string* error) {
+bool decode_faces(const uint8_t* bytes, size_t size, uint32_t vertex_count, std::vector<uint32_t>* faces,
+                  std::string* error) {
   ByteReader r(bytes, size);
   const uint8_t layout = r.u8();
   std::string why;
@@ -116,7 +117,7 @@ bool decode_faces(const uint8_t* bytes, size_t size, std::vector<uint32_t>* face
   else if (layout == uint8_t(FaceOrder::Traversal)) ok = decode_traversal(r, faces, &why);
   else if (layout == uint8_t(FaceOrder::Compact)) {
     // The range-coded stream runs to the end of the payload.
-    ok = decode_compact_faces(bytes + r.position(), r.remaining(), faces, &why);
+    ok = decode_compact_faces(bytes + r.position(), r.remaining(), vertex_count, faces, &why);
     r.take(r.remaining());
   }
   else why = "unknown face layout " + std::to_string(layout);
