@@ -36,25 +36,38 @@ void adjacency(const std::vector<uint32_t>& faces, uint32_t V, std::vector<uint3
   }
 }
 
-// For every face (v, a, b) whose a and b precede v, and every face (a, b, c) across that
-// edge whose c precedes v: the parallelogram (a, b, c) of v.
-void add_parallelograms(const std::vector<uint32_t>& faces, const std::vector<uint32_t>& pos, Traversal* t) {
-  struct Corner {
-    uint64_t edge;  // (min, max) vertex ids of the edge the corner faces
-    uint32_t vertex;
-  };
-  std::vector<Corner> corners;
-  corners.reserve(faces.size());
+// The corners of `faces` as (edge the corner faces, its vertex), sorted by edge (min, max),
+// then vertex: counted into buckets by the edge's smaller id first, so only each short
+// bucket is sorted.
+struct Corner {
+  uint64_t edge;  // (min, max) vertex ids of the edge the corner faces
+  uint32_t vertex;
+};
+std::vector<Corner> sorted_corners(const std::vector<uint32_t>& faces, uint32_t V) {
   auto key = [](uint64_t a, uint64_t b) { return a < b ? a << 32 | b : b << 32 | a; };
+  std::vector<uint32_t> start(size_t(V) + 2, 0);
+  for (size_t f = 0; f + 2 < faces.size(); f += 3)
+    for (int k = 0; k < 3; ++k) ++start[std::min(faces[f + size_t((k + 1) % 3)], faces[f + size_t((k + 2) % 3)]) + 1];
+  for (uint32_t v = 0; v <= V; ++v) start[v + 1] += start[v];
+  std::vector<Corner> corners(start[V]);
   for (size_t f = 0; f + 2 < faces.size(); f += 3)
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = faces[f + size_t(k)], a = faces[f + size_t((k + 1) % 3)], b = faces[f + size_t((k + 2) % 3)];
-      corners.push_back({key(a, b), v});
+      corners[start[std::min(a, b)]++] = {key(a, b), v};
     }
-  std::sort(corners.begin(), corners.end(),
-            [](const Corner& x, const Corner& y) { return x.edge != y.edge ? x.edge < y.edge : x.vertex < y.vertex; });
-  const uint32_t V = uint32_t(pos.size());
-  std::vector<std::vector<uint32_t>> per_vertex(V);
+  auto less = [](const Corner& x, const Corner& y) { return x.edge != y.edge ? x.edge < y.edge : x.vertex < y.vertex; };
+  for (size_t i = 0, j = 0; i < corners.size(); i = j) {
+    while (j < corners.size() && corners[j].edge >> 32 == corners[i].edge >> 32) ++j;
+    std::sort(corners.begin() + std::ptrdiff_t(i), corners.begin() + std::ptrdiff_t(j), less);
+  }
+  return corners;
+}
+
+// Calls visit(v, a, b, c) for every face (v, a, b) whose a and b precede v and every face
+// (a, b, c) across that edge whose c precedes v: the parallelogram (a, b, c) of v, in the
+// order of the sorted corners.
+template <class Visit>
+void for_each_parallelogram(const std::vector<Corner>& corners, const std::vector<uint32_t>& pos, Visit&& visit) {
   for (size_t i = 0; i < corners.size();) {
     size_t j = i;
     while (j < corners.size() && corners[j].edge == corners[i].edge) ++j;
@@ -65,17 +78,31 @@ void add_parallelograms(const std::vector<uint32_t>& faces, const std::vector<ui
       for (size_t y = i; y < j; ++y) {
         const uint32_t c = corners[y].vertex;
         if (c == v || c == a || c == b || pos[c] >= pos[v]) continue;
-        per_vertex[v].insert(per_vertex[v].end(), {a, b, c});
+        visit(v, a, b, c);
       }
     }
     i = j;
   }
+}
+
+// Every position's parallelograms (for_each_parallelogram), in traversal order: counted per
+// vertex, then placed, so no list is grown per vertex.
+void add_parallelograms(const std::vector<uint32_t>& faces, const std::vector<uint32_t>& pos, Traversal* t) {
+  const uint32_t V = uint32_t(pos.size());
+  const std::vector<Corner> corners = sorted_corners(faces, V);
+  std::vector<uint32_t> count(size_t(V) + 1, 0);
+  for_each_parallelogram(corners, pos, [&](uint32_t v, uint32_t, uint32_t, uint32_t) { ++count[v]; });
   t->para_offsets.assign(size_t(V) + 1, 0);
+  std::vector<uint32_t> at(V);  // where vertex v's next parallelogram goes
   for (uint32_t i = 0; i < V; ++i) {
-    const auto& list = per_vertex[t->order[i]];
-    t->para.insert(t->para.end(), list.begin(), list.end());
-    t->para_offsets[i + 1] = uint32_t(t->para.size() / 3);
+    at[t->order[i]] = t->para_offsets[i];
+    t->para_offsets[i + 1] = t->para_offsets[i] + count[t->order[i]];
   }
+  t->para.resize(size_t(t->para_offsets[V]) * 3);
+  for_each_parallelogram(corners, pos, [&](uint32_t v, uint32_t a, uint32_t b, uint32_t c) {
+    uint32_t* p = &t->para[size_t(at[v]++) * 3];
+    p[0] = a, p[1] = b, p[2] = c;
+  });
 }
 
 // Position i's earlier neighbours (adjacent vertices at positions < i, by id) and Fit set
