@@ -139,17 +139,17 @@ TEST(FacesCompact, RoundTripsCorpusMeshesInBothOrders) {
 }
 
 TEST(FacesCompact, RoundTripsAwkwardLists) {
-  const uint32_t big = UINT32_MAX - 1;
+  const uint32_t big = 65000;  // ids far apart, yet dense enough for the layout (kCompactFreeIds)
   std::vector<std::vector<uint32_t>> lists = {
       {},
       {4, 9, 2},                                   // one triangle
       {0, 1, 2, 2, 1, 3, 0, 1, 4, 1, 0, 5},        // edge 0-1 in three triangles
       {0, 1, 2, 0, 1, 2, 1, 2, 0, 2, 1, 0},        // repeated triangle, same and flipped winding
       {5, 5, 5, 5, 5, 6, 6, 5, 5, 7, 6, 5},        // degenerate triangles
-      {big, 0, big - 1, 0, big, 4000000000u, 3, 2, 1, big - 1, 0, 3},  // ids with huge gaps
+      {big, 0, big - 1, 0, big, 50000, 3, 2, 1, big - 1, 0, 3},  // ids with large gaps
   };
   // Several components and boundaries: two grids with far-apart ids, interleaved.
-  std::vector<uint32_t> a = grid(6, 4, 0), b = grid(3, 7, 4000000000u), both;
+  std::vector<uint32_t> a = grid(6, 4, 0), b = grid(3, 7, 40000), both;
   for (size_t t = 0; t < std::max(a.size(), b.size()); t += 3) {
     if (t < a.size()) both.insert(both.end(), a.begin() + ptrdiff_t(t), a.begin() + ptrdiff_t(t + 3));
     if (t < b.size()) both.insert(both.end(), b.begin() + ptrdiff_t(t), b.begin() + ptrdiff_t(t + 3));
@@ -167,6 +167,27 @@ TEST(FacesCompact, RoundTripsAwkwardLists) {
     EXPECT_EQ(compact_roundtrip(faces), faces) << faces.size();
     EXPECT_EQ(traversal_order(traversal_order(faces)), traversal_order(faces)) << faces.size();
   }
+}
+
+// Ids far sparser than a mesh's (up to 2^32 - 2) would cost the per-vertex state of every
+// id below them: the writer declines Compact for Exact, and the list still round trips.
+TEST(FacesCompact, SparseIdsFallBackToExact) {
+  const std::vector<uint32_t> faces = {UINT32_MAX - 1, 0, 4000000000u, 0, UINT32_MAX - 1, 7};
+  const std::vector<uint8_t> coded = encode_faces(faces, FaceOrder::Compact);
+  ASSERT_FALSE(coded.empty());
+  EXPECT_EQ(int(coded[0]), int(FaceOrder::Exact));
+  std::vector<uint32_t> back;
+  std::string err;
+  EXPECT_TRUE(decode_faces(coded.data(), coded.size(), UINT32_MAX, &back, &err)) << err;
+  EXPECT_EQ(back, faces);
+  // The same list in the Compact layout (as a hostile file could claim) is refused for a
+  // vertex count its ids exceed, before any triangle is built.
+  const std::vector<uint32_t> dense = {2, 0, 1, 0, 2, 3};
+  std::vector<uint8_t> compact = encode_faces(dense, FaceOrder::Compact);
+  ASSERT_EQ(int(compact[0]), int(FaceOrder::Compact));
+  EXPECT_TRUE(decode_faces(compact.data(), compact.size(), 4, &back, &err)) << err;
+  EXPECT_FALSE(decode_faces(compact.data(), compact.size(), 3, &back, &err));
+  EXPECT_NE(err.find("out of range"), std::string::npos) << err;
 }
 
 TEST(FacesCompact, RejectsTruncationsFlipsAndAbsurdCounts) {

@@ -18,4 +18,10 @@ namespace dcurve {
 constexpr uint64_t kCompactFreeTriangles = 4096;
 constexpr uint64_t kCompactTrianglesPerByte = 64;
 
+// Both sides keep state per vertex id (about 5 bytes each), so the writer declines the layout
+// (the caller falls back to Exact) when ids are far sparser than any mesh's: the largest id
+// must be below kCompactFreeIds + kCompactIdsPerTriangle * T. A closed mesh has about T / 2.
+constexpr uint64_t kCompactFreeIds = uint64_t(1) << 16;
+constexpr uint64_t kCompactIdsPerTriangle = 12;
+
 }  // namespace dcurve

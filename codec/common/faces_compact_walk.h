@@ -78,20 +78,27 @@ class Region {
   }
   const IdRanks& ids() const { return ids_; }
   // Room for about `triangles` triangles of a closed mesh (half as many vertices).
-  void reserve(size_t triangles) {
-    rings_.reserve(std::min<size_t>(triangles / 2 + 3, slot_.size()));
-    edges_.reserve(3 * triangles);
-  }
+  void reserve(size_t triangles) { rings_.reserve(std::min<size_t>(triangles / 2 + 3, slot_.size())); }
   // Triangles out around v so far, clamped to kFanClasses - 1.
   int fan(uint32_t v) const { return int(std::min<uint32_t>(ring(v).into.count, kFanClasses - 1)); }
-  bool has_edge(uint32_t from, uint32_t to) const { return edges_.contains(edge_key(from, to)); }
+  // Whether the directed edge from -> to is out. A vertex's from list holds all its edges
+  // out until it has more than kRing (a manifold vertex rarely does): only those go to a table.
+  bool has_edge(uint32_t from, uint32_t to) const {
+    if (!seen(from)) return false;
+    const Recent& out = ring(from).from;
+    if (out.count > kRing) return edges_.contains(edge_key(from, to));
+    return std::find(out.ids, out.ids + out.count, to) != out.ids + out.count;
+  }
   // All three corners must have been marked seen.
   void add_triangle(const uint32_t* t) {
     for (int c = 0; c < 3; ++c) {
       const uint32_t u = t[c], v = t[(c + 1) % 3];
-      edges_.insert(edge_key(u, v), 0);
+      Recent& out = ring(u).from;
+      if (out.count == kRing)  // u's list is about to drop its oldest edge: all it holds go to the table
+        for (uint32_t w : out.ids) edges_.insert(edge_key(u, w), 0);
+      if (out.count >= kRing) edges_.insert(edge_key(u, v), 0);
       ring(v).into.push(u);
-      ring(u).from.push(v);
+      out.push(v);
     }
   }
   // The vertices x that would close a triangle (b, a, x) against the border of the region:
@@ -133,7 +140,7 @@ class Region {
   const Rings& ring(uint32_t v) const { return rings_[slot(v)]; }
   std::vector<uint32_t> slot_;  // vertex id -> its Rings, or kUnseen
   std::vector<Rings> rings_;
-  FlatIndex edges_;  // directed edges out (values unused)
+  FlatIndex edges_;  // directed edges out of vertices with more than kRing of them (values unused)
   IdRanks ids_;
 };
 

@@ -35,6 +35,7 @@ bool encode_compact_faces(const std::vector<uint32_t>& faces, std::vector<uint8_
   std::vector<uint32_t> list(faces.begin(), faces.begin() + ptrdiff_t(3 * T));
   EncodeIo io;
   const uint32_t bound = list.empty() ? 0 : *std::max_element(list.begin(), list.end()) + 1;  // ids <= 2^32 - 2
+  if (bound > kCompactFreeIds + kCompactIdsPerTriangle * T) return false;
   traverse(io, T, bound, &list, nullptr);
   const std::vector<uint8_t>& stream = io.enc.finish();
   if (T > triangle_bound(stream.size())) return false;
