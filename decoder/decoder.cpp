@@ -8,6 +8,7 @@
 #include "codec/common/error.h"
 #include "codec/common/residual.h"
 #include "codec/decompress/container_reader.h"
+#include "codec/decompress/model_prediction.h"
 #include "codec/decompress/residual_decoder.h"
 #include "decoder_state.h"
 #include "normals.h"
@@ -52,6 +53,9 @@ bool prepare(SharedState* shared, uint64_t file_bytes, std::string* error) {
     return false;
   // The predictor holds the decoded basis: its coded form is read no more.
   std::vector<uint8_t>().swap(shared->model.low_rank.basis_payload);
+  // The traversals are built, so only a motion model reads the curves again (a file
+  // without CURV has one-point curves: three arrays of V values).
+  if (!has_motion_model(m)) shared->model.curves = Curves();
   return true;
 }
 

@@ -259,6 +259,39 @@ TEST(LowRank, RoundShiftIsHalfUpDivision) {
   EXPECT_EQ(round_shift(-5, 2), -1);
 }
 
+// The frame is summed tile by tile: every value, across tile edges and a last partial tile,
+// from 16- and 32-bit tables, is the rounded, clamped sum written out in 128 bits.
+TEST(LowRank, FrameValuesAreTheDirectSumsInEveryTile) {
+  std::mt19937 rng(11);
+  const size_t n = 3 * 777;  // tiles of 512 and a partial one
+  for (const int64_t amplitude : {int64_t(30000), kMaxLowRankBasis}) {
+    LowRankModel lr;
+    lr.components = 5;
+    lr.shift = 20;
+    lr.mean_shift = 2;
+    std::uniform_int_distribution<int32_t> coeff(-(1 << 20), 1 << 20), value(-int32_t(amplitude), int32_t(amplitude));
+    for (uint32_t i = 0; i < 2 * lr.components; ++i) lr.coeffs.push_back(i == 3 ? 0 : coeff(rng));
+    std::vector<int32_t> mean_and_basis((lr.components + 1) * n);
+    for (int32_t& v : mean_and_basis) v = value(rng);
+    LowRankTables tables;
+    tables.assign(mean_and_basis, n);
+    ASSERT_EQ(tables.basis16.empty(), amplitude > INT16_MAX);
+    std::vector<int32_t> direct(n), from_tables(n);
+    for (uint32_t f = 0; f < 2; ++f) {
+      low_rank_frame(lr, f, mean_and_basis.data(), n, direct.data());
+      low_rank_frame(lr, f, tables, n, from_tables.data());
+      EXPECT_EQ(direct, from_tables);
+      for (size_t i = 0; i < n; ++i) {
+        __int128 sum = __int128(mean_and_basis[i]) << (lr.shift - lr.mean_shift);
+        for (uint32_t k = 0; k < lr.components; ++k)
+          sum += __int128(lr.coeffs[f * lr.components + k]) * mean_and_basis[(k + 1) * n + i];
+        const int64_t want = std::clamp(round_shift(int64_t(sum), lr.shift), -(int64_t(1) << 30), int64_t(1) << 30);
+        ASSERT_EQ(direct[i], want) << "frame " << f << " value " << i;
+      }
+    }
+  }
+}
+
 TEST(LowRank, ChosenOnALowRankAnimationAndWithinToleranceEveryFrame) {
   const Animation anim = bending_sheet(16, 10, 40);
   EncodeReport with, without;

@@ -50,9 +50,8 @@ inline int64_t round_shift(int64_t x, uint32_t s) {
 // mean and basis are the decoded pseudo-frames (mean first, then K basis vectors, n each,
 // already checked against kMaxLowRankBasis), out receives n values. With poses, each
 // vertex's three posed-space values are mapped by frame f's pose (format_spec/dcrv.md
-// section 10). scratch: n values of working space.
-void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_basis, size_t n, int32_t* out,
-                    int64_t* scratch);
+// section 10).
+void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_basis, size_t n, int32_t* out);
 
 // The decoded mean and basis as a decoder keeps them: the basis in 16 bits when every value
 // fits (half the memory; most files), else in 32.
@@ -65,7 +64,6 @@ struct LowRankTables {
   size_t bytes() const { return mean.capacity() * 4 + basis16.capacity() * 2 + basis32.capacity() * 4; }
 };
 // low_rank_frame from the tables.
-void low_rank_frame(const LowRankModel& lr, uint32_t f, const LowRankTables& tables, size_t n, int32_t* out,
-                    int64_t* scratch);
+void low_rank_frame(const LowRankModel& lr, uint32_t f, const LowRankTables& tables, size_t n, int32_t* out);
 
 }  // namespace dcurve

@@ -69,8 +69,7 @@ void GridPredictor::frame(uint32_t f, int32_t* out, PredictionScratch* scratch) 
   const Model& m = *model_;
   const size_t n = size_t(m.meta.vertex_count) * 3;
   if (m.low_rank.components > 0) {
-    scratch->sum.resize(n);
-    low_rank_frame(m.low_rank, f, low_rank_, n, out, scratch->sum.data());
+    low_rank_frame(m.low_rank, f, low_rank_, n, out);
     return;
   }
   scratch->xyz.resize(n);

@@ -27,9 +27,8 @@ bool has_model_prediction(const Model& model);
 
 // Working space of GridPredictor::frame, reused from frame to frame.
 struct PredictionScratch {
-  std::vector<float> xyz;    // PDE model positions
-  std::vector<int64_t> sum;  // low-rank sums
-  size_t bytes() const { return xyz.capacity() * sizeof(float) + sum.capacity() * sizeof(int64_t); }
+  std::vector<float> xyz;  // PDE model positions
+  size_t bytes() const { return xyz.capacity() * sizeof(float); }
 };
 
 // The Model predictor one frame at a time. Low-rank: the mean and basis are decoded once

@@ -354,8 +354,7 @@ bool quantize_low_rank(const GridComponents& pca, uint32_t K, double basis_step,
 std::vector<int32_t> low_rank_prediction(const LowRankModel& lr, const std::vector<int32_t>& mean_and_basis, uint32_t F,
                                          size_t n) {
   std::vector<int32_t> out(size_t(F) * n);
-  std::vector<int64_t> sums(n);
-  for (uint32_t f = 0; f < F; ++f) low_rank_frame(lr, f, mean_and_basis.data(), n, out.data() + size_t(f) * n, sums.data());
+  for (uint32_t f = 0; f < F; ++f) low_rank_frame(lr, f, mean_and_basis.data(), n, out.data() + size_t(f) * n);
   return out;
 }
 

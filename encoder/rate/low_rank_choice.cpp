@@ -327,10 +327,8 @@ bool LowRankSearch::screen(const GridComponents& pca, uint32_t K, double step, b
   if (!forced_ && section >= double(model_->residual.payload.size())) return true;
   // The sampled frames' predictions, from the values the basis payload codes.
   std::vector<int32_t> sampled(sample_.frames.size() * n_), q = sample_.rounded;
-  std::vector<int64_t> sums(n_);
   for (size_t j = 0; j < sample_.frames.size(); ++j)
-    low_rank_frame(trial.low_rank, sample_.frames[j], basis.values.data(), n_, sampled.data() + j * n_,
-                   sums.data());
+    low_rank_frame(trial.low_rank, sample_.frames[j], basis.values.data(), n_, sampled.data() + j * n_);
   ResidualOptions ro = shared_;
   ro.model_prediction = &sampled;
   const ResidualPlan plan = choose_chunked_plan(sample_.model, sample_.input, snap_, &q, ro, screen_options_);
