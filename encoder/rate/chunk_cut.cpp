@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "codec/common/predictors.h"
@@ -12,8 +13,11 @@ namespace {
 bool inside(uint32_t r, ChunkSpan span) { return r >= span.first && r - span.first < span.count; }
 
 // `c` of a frame of `span`, its frames made chunk-local; the spatial-only fallback (keeping
-// a spatial mode that needs no geometry frame) where it reaches outside the span.
-PredictorChoice cut_choice(const PredictorChoice& c, ChunkSpan span, PredictorKind fallback) {
+// a spatial mode that needs no geometry frame) where it reaches outside the span. A geometry
+// frame outside the span becomes the chunk's first coded frame (local id `geometry`), as
+// planning the chunk on its own would name it, except for that frame itself (kGeometryNone).
+constexpr uint32_t kGeometryNone = UINT32_MAX;
+PredictorChoice cut_choice(const PredictorChoice& c, ChunkSpan span, PredictorKind fallback, uint32_t geometry) {
   const bool linear = c.kind == PredictorKind::Linear;
   PredictorChoice out = c;
   if (has_reference(c.kind) && (!inside(c.r0, span) || (linear && !inside(c.r1, span))))
@@ -25,6 +29,8 @@ PredictorChoice cut_choice(const PredictorChoice& c, ChunkSpan span, PredictorKi
   if (uses_geometry(out.spatial)) {
     if (inside(out.g, span)) {
       out.g -= span.first;
+    } else if (geometry != kGeometryNone) {
+      out.g = geometry;
     } else {
       out.spatial = SpatialMode::Parallelogram;
       out.g = 0;
@@ -33,12 +39,12 @@ PredictorChoice cut_choice(const PredictorChoice& c, ChunkSpan span, PredictorKi
   return out;
 }
 
-FramePredictors cut_frame(const FramePredictors& fp, ChunkSpan span, PredictorKind fallback) {
+FramePredictors cut_frame(const FramePredictors& fp, ChunkSpan span, PredictorKind fallback, uint32_t geometry) {
   FramePredictors out = fp;
   bool motion = false;
   for (std::array<PredictorChoice, 3>& candidate : out.candidates)
     for (PredictorChoice& c : candidate) {
-      c = cut_choice(c, span, fallback);
+      c = cut_choice(c, span, fallback, geometry);
       motion = motion || c.kind == PredictorKind::Motion;
     }
   if (!motion) out.transforms.clear();
@@ -59,8 +65,11 @@ ResidualPlan cut_into_chunks(const PredictorPlan& whole, uint32_t F, uint32_t K,
     for (uint32_t f : whole.order)
       if (inside(f, span)) chunk.order.push_back(f - span.first);
     chunk.frames.reserve(span.count);
-    for (uint32_t f = span.first; f < span.first + span.count; ++f)
-      chunk.frames.push_back(cut_frame(whole.frames[f], span, fallback));
+    const uint32_t first_coded = chunk.order.empty() ? 0 : chunk.order[0];
+    for (uint32_t f = span.first; f < span.first + span.count; ++f) {
+      const uint32_t local = f - span.first;
+      chunk.frames.push_back(cut_frame(whole.frames[f], span, fallback, local == first_coded ? kGeometryNone : first_coded));
+    }
     out.chunks.push_back(std::move(chunk));
   }
   return out;

@@ -301,8 +301,12 @@ std::vector<PredictorChoice> candidates_for(const std::vector<int32_t>& q, uint3
     if (!(po.kinds >> int(kind) & 1)) return;
     for (uint8_t m = 0; m < kSpatialModeCount; ++m) {
       const SpatialMode s = SpatialMode(m);
-      // Geometric and Fit weights come from the reference pose, or the nearest decoded frame.
-      const uint32_t g = has_reference(kind) ? r0 : below != none ? below : above;
+      // Geometric and Fit weights come from the chunk's first frame (decoded first), or with
+      // po.geometry_per_frame from the reference pose or the nearest decoded frame.
+      const uint32_t g = !po.geometry_per_frame && decoded[0] ? 0
+                         : has_reference(kind)                ? r0
+                         : below != none                      ? below
+                                                              : above;
       const PredictorChoice c{kind, r0, r1, s, uses_geometry(s) ? g : 0};
       if (po.spatial_modes >> int(s) & 1 && predictor_usable(c, f, decoded, options)) out.push_back(c);
     }
@@ -491,20 +495,21 @@ ResidualPlanOptions narrow_to_plan(const ResidualPlanOptions& po, const Predicto
   return narrow;
 }
 
-PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
-                                   double max_distance, std::vector<int32_t>* q, const ResidualOptions& caller_options,
-                                   const ResidualPlanOptions& po) {
-  Traversal owned;
-  const Traversal& trav = traversal_for(model, caller_options, &owned);
-  ResidualOptions options = caller_options;  // every trial below reuses this traversal
-  options.traversal = &trav;
-  const double radius = plan_radius(max_distance);
+namespace {
+// A plan, the grid values it chose and its coded size.
+struct PlanTrial {
+  std::vector<int32_t> q;
+  PredictorPlan plan;
+  size_t bytes = SIZE_MAX;
+};
+
+// The smallest of po's coding orders and cluster layouts, each planned from the values q.
+// `options` names the traversal every trial reuses.
+PlanTrial smallest_trial(const Model& model, const Traversal& trav, const std::vector<std::vector<float>>& frames,
+                         double radius, const std::vector<int32_t>& q, const ResidualOptions& options,
+                         const ResidualPlanOptions& po) {
   // Independent trials run in parallel; the first smallest wins, whatever the thread count.
-  struct Trial {
-    std::vector<int32_t> q;
-    PredictorPlan plan;
-    size_t bytes = SIZE_MAX;
-  };
+  using Trial = PlanTrial;
   auto keep_smallest = [](std::vector<Trial>& trials, Trial* best) {
     for (Trial& t : trials)
       if (t.bytes < best->bytes) *best = std::move(t);
@@ -512,7 +517,7 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
   std::vector<Trial> orders(po.gop_sizes.size()), layouts(po.cluster_layouts.size());
   auto run_order = [&](size_t i) {
     Trial& t = orders[i];
-    t.q = *q;
+    t.q = q;
     plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, po.gop_sizes[i]), options, po,
                    &t.q, &t.plan);
     // The order is judged by the coded size: the estimate that ranks predictors within a
@@ -522,7 +527,7 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
   // Per-cluster predictors on the winning order, kept when they code smaller.
   auto run_layout = [&](size_t i, const std::vector<uint32_t>& order) {
     Trial& t = layouts[i];
-    t.q = *q;
+    t.q = q;
     const ResidualPlanOptions::ClusterLayout& layout = po.cluster_layouts[i];
     ResidualPlanOptions layout_po = po;
     layout_po.extra_references = layout.extra_references;
@@ -546,6 +551,34 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
     parallel_for(layouts.size(), po.threads, [&](size_t i) { run_layout(i, best.plan.order); });
   }
   keep_smallest(layouts, &best);
+  return best;
+}
+
+bool names_geometry(const PredictorPlan& plan) {
+  for (const FramePredictors& fp : plan.frames)
+    for (const auto& candidate : fp.candidates)
+      for (const PredictorChoice& c : candidate)
+        if (uses_geometry(c.spatial)) return true;
+  return false;
+}
+}  // namespace
+
+PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
+                                   double max_distance, std::vector<int32_t>* q, const ResidualOptions& caller_options,
+                                   const ResidualPlanOptions& po) {
+  Traversal owned;
+  const Traversal& trav = traversal_for(model, caller_options, &owned);
+  ResidualOptions options = caller_options;  // every trial below reuses this traversal
+  options.traversal = &trav;
+  const double radius = plan_radius(max_distance);
+  PlanTrial best = smallest_trial(model, trav, frames, radius, *q, options, po);
+  // A table per frame, on the order and layout that won: kept only where it pays.
+  if (po.try_geometry_per_frame && !po.geometry_per_frame && names_geometry(best.plan)) {
+    ResidualPlanOptions per_frame = narrow_to_plan(po, best.plan);
+    per_frame.geometry_per_frame = true;
+    PlanTrial tables = smallest_trial(model, trav, frames, radius, *q, options, per_frame);
+    if (double(tables.bytes) < double(best.bytes) * (1 - kPerFrameGeometryGain)) best = std::move(tables);
+  }
   q->swap(best.q);
   return best.plan;
 }

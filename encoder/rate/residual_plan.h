@@ -44,6 +44,13 @@ struct ResidualPlanOptions {
   };
   std::vector<ClusterLayout> cluster_layouts = {{8, 32, 6}, {512, 1, 3}};
   uint32_t max_candidates = 8;  // candidates a frame may keep, 1..16
+  // Geometry frames, whose poses the Fit and Geometric weights are solved on: false names
+  // the chunk's first coded frame for every frame, so a decoder solves one weight table per
+  // chunk; true the reference pose or the nearest decoded frame, a table per frame.
+  bool geometry_per_frame = false;
+  // With geometry_per_frame false, choose_plan_and_grid also plans its winning order and
+  // layout with a table per frame, and keeps that plan past kPerFrameGeometryGain (--effort 3).
+  bool try_geometry_per_frame = false;
   // Threads for the independent trials (coding orders, cluster layouts); 0 = all cores.
   // The result never depends on it.
   int threads = 0;
@@ -55,6 +62,11 @@ struct ResidualPlanOptions {
   // depends on it.
   WorkMeter* meter = nullptr;
 };
+
+// A table per frame about doubles a decoder's time on a clip whose frames use them (horse-
+// gallop: 37 tables, half its decode): worth it only when it shrinks the chunk's payload by
+// more than this fraction.
+constexpr double kPerFrameGeometryGain = 0.02;
 
 // Estimated cost, bits, of coding `residuals` with an adaptive integer coder: their
 // order-0 entropy over exponent classes within each context (contexts[i] < 256, same
