@@ -509,14 +509,13 @@ PlanTrial smallest_trial(const Model& model, const Traversal& trav, const std::v
                          double radius, const std::vector<int32_t>& q, const ResidualOptions& options,
                          const ResidualPlanOptions& po) {
   // Independent trials run in parallel; the first smallest wins, whatever the thread count.
-  using Trial = PlanTrial;
-  auto keep_smallest = [](std::vector<Trial>& trials, Trial* best) {
-    for (Trial& t : trials)
+  auto keep_smallest = [](std::vector<PlanTrial>& trials, PlanTrial* best) {
+    for (PlanTrial& t : trials)
       if (t.bytes < best->bytes) *best = std::move(t);
   };
-  std::vector<Trial> orders(po.gop_sizes.size()), layouts(po.cluster_layouts.size());
+  std::vector<PlanTrial> orders(po.gop_sizes.size()), layouts(po.cluster_layouts.size());
   auto run_order = [&](size_t i) {
-    Trial& t = orders[i];
+    PlanTrial& t = orders[i];
     t.q = q;
     plan_for_order(model, trav, frames, radius, coding_order(model.meta.frame_count, po.gop_sizes[i]), options, po,
                    &t.q, &t.plan);
@@ -526,7 +525,7 @@ PlanTrial smallest_trial(const Model& model, const Traversal& trav, const std::v
   };
   // Per-cluster predictors on the winning order, kept when they code smaller.
   auto run_layout = [&](size_t i, const std::vector<uint32_t>& order) {
-    Trial& t = layouts[i];
+    PlanTrial& t = layouts[i];
     t.q = q;
     const ResidualPlanOptions::ClusterLayout& layout = po.cluster_layouts[i];
     ResidualPlanOptions layout_po = po;
@@ -535,7 +534,7 @@ PlanTrial smallest_trial(const Model& model, const Traversal& trav, const std::v
                                  po.max_candidates, &t.q, options, layout_po);
     t.bytes = encode_residuals(model, t.q, &t.plan, options).size();
   };
-  Trial best;
+  PlanTrial best;
   if (orders.size() == 1) {
     // One order wins before it is tried: the layouts need not wait for its plan, and all
     // run side by side (the low-rank screening plans this way, once per count and step).
