@@ -282,7 +282,7 @@ TEST(LowRank, FrameValuesAreTheDirectSumsInEveryTile) {
       low_rank_frame(lr, f, tables, n, from_tables.data());
       EXPECT_EQ(direct, from_tables);
       for (size_t i = 0; i < n; ++i) {
-        __int128 sum = __int128(mean_and_basis[i]) << (lr.shift - lr.mean_shift);
+        __int128 sum = __int128(mean_and_basis[i]) * (__int128(1) << (lr.shift - lr.mean_shift));
         for (uint32_t k = 0; k < lr.components; ++k)
           sum += __int128(lr.coeffs[f * lr.components + k]) * mean_and_basis[(k + 1) * n + i];
         const int64_t want = std::clamp(round_shift(int64_t(sum), lr.shift), -(int64_t(1) << 30), int64_t(1) << 30);
