@@ -13,6 +13,7 @@
 #include "codec/compress/faces_encoder.h"
 #include "codec/decompress/faces_decoder.h"
 #include "encoder/io/frames.h"
+#include "test_util.h"
 
 namespace dcurve {
 namespace {
@@ -117,8 +118,8 @@ TEST(FacesCompact, RegionKeepsAVertexsEdgesWhenItIsSeenAgain) {
 }
 
 TEST(FacesCompact, RoundTripsCorpusMeshesInBothOrders) {
+  if (!test::have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found at " << DCURVE_CORPUS_EXT;
   const std::filesystem::path corpus = DCURVE_CORPUS_EXT;
-  if (!std::filesystem::exists(corpus)) GTEST_SKIP() << "corpus-ext not found at " << corpus;
   std::vector<std::filesystem::path> meshes;
   for (const char* seq : {"horse-gallop", "chicken-crossing", "elastic-cow", "cloth-sphere", "crane"})
     meshes.push_back(corpus / seq / "frame_00000.obj");

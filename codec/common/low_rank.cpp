@@ -11,7 +11,7 @@ constexpr int64_t kFrameLimit = int64_t(1) << 30;  // as the PDE model's grid pr
 
 // out[i] for one tile of `count` values at `begin`: mean * 2^(shift - mean_shift) plus the
 // frame's coefficients c times the basis, rounded by 2^shift and clamped. |mean| * 2^30 <
-// 2^61 and 64 products of at most 2^48: the sum stays below 2^62.
+// 2^61 and 64 products of at most 2^48: |sum| < 2^61 + 2^54.
 // Inlined into each build of frame_values below, so each is compiled for its instruction set.
 #if defined(__GNUC__)
 #define DCURVE_INLINE inline __attribute__((always_inline))
@@ -31,7 +31,8 @@ DCURVE_INLINE void tile_values(const LowRankModel& lr, const int32_t* c, const i
     for (size_t i = 0; i < count; ++i) acc[i] += ck * int64_t(b[i]);
   }
   // round_shift(acc, shift) as a shift of a non-negative value, so it vectorizes: |acc| <
-  // 2^62, and 2^62 is a multiple of 2^shift (shift <= 30).
+  // 2^61 + 2^54 (above), so acc + half + 2^62 lies in [0, 2^63), and 2^62 is a multiple of
+  // 2^shift (shift <= 30).
   const uint32_t s = lr.shift;
   const int64_t bias = int64_t(1) << 62, half = s ? int64_t(1) << (s - 1) : 0;
   for (size_t i = 0; i < count; ++i) {
