@@ -87,7 +87,7 @@ class Region {
     if (!seen(from)) return false;
     const Recent& out = ring(from).from;
     if (out.count > kRing) return edges_.contains(edge_key(from, to));
-    return std::find(out.ids, out.ids + out.count, to) != out.ids + out.count;
+    return out.holds(to);
   }
   // All three corners must have been marked seen.
   void add_triangle(const uint32_t* t) {
@@ -108,7 +108,7 @@ class Region {
   int candidates(uint32_t a, uint32_t b, uint32_t* out, int* from_a) const {
     int n = 0;
     auto offer = [&](uint32_t w, bool open) {
-      if (w == a || w == b || !open || std::find(out, out + n, w) != out + n) return;
+      if (w == a || w == b || !open || listed(out, n, w)) return;
       out[n++] = w;
     };
     const Recent& into_a = ring(a).into;
@@ -121,12 +121,25 @@ class Region {
 
  private:
   struct Recent {
-    uint32_t ids[kRing];
+    uint32_t ids[kRing] = {};
     uint32_t count = 0;
     void push(uint32_t v) { ids[count++ % kRing] = v; }
     uint32_t size() const { return std::min<uint32_t>(count, kRing); }
     uint32_t back(uint32_t k) const { return ids[(count - 1 - k) % kRing]; }  // k = 0: newest
+    // Whether v is among the first size() entries: a fixed-length loop without early exit,
+    // which compiles to a few vector compares (this is the walk's most frequent question).
+    bool holds(uint32_t v) const {
+      bool hit = false;
+      for (uint32_t k = 0; k < kRing; ++k) hit |= (ids[k] == v) & (k < count);
+      return hit;
+    }
   };
+  // Whether v is among list[0..n), n <= kMaxCandidates: as Recent::holds.
+  static bool listed(const uint32_t* list, int n, uint32_t v) {
+    bool hit = false;
+    for (int k = 0; k < kMaxCandidates; ++k) hit |= (list[k] == v) & (k < n);
+    return hit;
+  }
   struct Rings {
     Recent into, from;
   };
@@ -239,7 +252,7 @@ bool traverse(Io& io, uint64_t T, uint32_t bound, std::vector<uint32_t>* list, s
       const bool fits = !Io::kDecoding && truth(n, 0) == b && truth(n, 1) == a;
       if (!io.bit(m.follows[2 * e + region.has_edge(b, a)], fits)) continue;
       const uint32_t x = truth(n, 2);
-      uint32_t cand[kMaxCandidates];
+      uint32_t cand[kMaxCandidates] = {};  // listed() reads all of it
       int k_a = 0;
       const int k = region.candidates(a, b, cand, &k_a);
       const int at = Io::kDecoding ? -1 : int(std::find(cand, cand + k, x) - cand);

@@ -35,6 +35,13 @@ class IdRanks {
   // word the ids of the block's earlier words, so a count is a few steps and a popcount.
   static constexpr int kBlockWordsBits = 6;
   uint64_t block_below(size_t block) const;
+  // Ids in the set in [lo, hi], both inside the words, hi - lo < kNearWords * 64: a few
+  // popcounts (most ranks the coder asks for are between ids a few apart).
+  uint64_t used_near(uint64_t lo, uint64_t hi) const;
+  // unrank by a walk over at most kNearWords words from `from`: false when it would leave the
+  // words or take longer (the binary search then answers).
+  bool unrank_near(int64_t from, int64_t rank, uint32_t* id) const;
+  static constexpr uint64_t kNearWords = 4;
   // Ids in [0, y) given count_below(first) for some first <= y: the binary searches of
   // unrank keep one end fixed.
   uint64_t free_from(int64_t first, uint64_t used_before_first, int64_t last) const;
