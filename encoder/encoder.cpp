@@ -22,6 +22,7 @@
 #include "encoder/render_limits.h"
 #include "encoder/work_meter.h"
 #include "encoder/rate/block_flags.h"
+#include "encoder/rate/fast_grid.h"
 #include "encoder/rate/fast_low_rank.h"
 #include "encoder/rate/fast_plan.h"
 #include "encoder/rate/inbetween_choice.h"
@@ -159,6 +160,40 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
   return true;
 }
 
+// What every file of `anim` holds before its grid: metadata, faces, and the curves of a
+// file without a PDE model.
+Model file_base(const Animation& anim, const EncodeOptions& opt, std::string* curve_fallback) {
+  Model m;
+  m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), anim.frame_rate, opt.tolerance,
+            bbox_diagonal(anim.frames[0]), ""};
+  // The residual layer predicts from mesh neighbours when the file stores faces, and from
+  // curve neighbours otherwise: it must see exactly what the decoder will.
+  if (opt.connectivity) m.faces = opt.exact_face_order ? anim.faces : smaller_face_order(anim.faces);
+  EncodeOptions plain_opt = opt;
+  plain_opt.model = ModelChoice::None;
+  m.curves = file_curves(anim, plain_opt, curve_fallback);
+  return m;
+}
+
+// The fast profile without a PDE model: grid, low-rank model and fast payload all chosen by
+// the fast coder's bytes (encoder/rate/fast_grid.h), no format 3 encode at all.
+bool encode_fast_alone(const Animation& anim, const EncodeOptions& opt, WorkMeter* meter, Model* m,
+                       std::string* curve_fallback, std::string* error) {
+  const Model base = file_base(anim, opt, curve_fallback);
+  const double max_distance = opt.tolerance * base.meta.diag;
+  FastLayerOptions fo;
+  fo.snap_distance = snap_distance(anim, max_distance);
+  fo.chunk_frames = opt.chunk_frames;
+  fo.threads = opt.threads;
+  fo.components = opt.low_rank;
+  fo.meter = meter;
+  const double refinement = opt.grid_refinement > 0     ? opt.grid_refinement
+                            : opt.effort == kMinEffort ? kUntriedRefinement
+                                                       : 0;
+  return choose_fast_grid(anim, base, max_distance, refinement,
+                          opt.effort == kMaxEffort ? GridSearch::Walk : GridSearch::Bracket, fo, m, error);
+}
+
 // The model every encode starts from: faces, curves, and the grid chosen by trial encodes
 // of encode_plain. When the trials coded the whole animation, the winning trial is the
 // plain encode itself: *plain receives it and *have_plain is set. When they coded part of
@@ -166,14 +201,10 @@ bool encode_plain(const Animation& anim, const EncodeOptions& opt, const GridSta
 bool start_model(const Animation& anim, const EncodeOptions& opt, GridStart* out, PlainEncode* plain, bool* have_plain,
                  std::optional<TrialChoices>* follow, std::string* curve_fallback, std::string* error) {
   Model& m = out->model;
-  const double L = bbox_diagonal(anim.frames[0]);
-  m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), anim.frame_rate, opt.tolerance, L, ""};
-  // The residual layer predicts from mesh neighbours when the file stores faces, and from
-  // curve neighbours otherwise: it must see exactly what the decoder will.
-  if (opt.connectivity) m.faces = opt.exact_face_order ? anim.faces : smaller_face_order(anim.faces);
+  m = file_base(anim, opt, curve_fallback);
+  const double L = m.meta.diag;
   EncodeOptions plain_opt = opt;
   plain_opt.model = ModelChoice::None;
-  m.curves = file_curves(anim, plain_opt, curve_fallback);
   {
     ResidualOptions ro;
     ro.weights_source = out->weights;
@@ -332,6 +363,80 @@ std::vector<uint64_t> forecast_stages(const Animation& anim, const EncodeOptions
   return stages;
 }
 
+// Every encode but the fast profile's without a PDE model: the grid and plain file by
+// format 3 trial encodes, its chunk length, the PDE motions where asked for and they pay,
+// then block flags (or, for the fast profile, its own layer over the chosen model) into *model.
+bool encode_searched(const Animation& anim, const EncodeOptions& opt, WorkMeter* meter, Model* model,
+                     EncodeReport* rep, std::string* error) {
+  SpatialWeightsStore weights;
+  GridStart start;
+  start.weights = &weights;
+  meter->forecast(forecast_stages(anim, opt));
+  start.meter = meter;
+  PlainEncode plain;
+  Model& m = plain.model;
+  CodedResidual& coded = plain.coded;  // what m's payloads code
+  bool have_plain = false;
+  std::optional<TrialChoices> follow;
+  if (!start_model(anim, opt, &start, &plain, &have_plain, &follow, &rep->curve_fallback, error)) return false;
+  meter->end_stage();  // the grid (kGridStage)
+  if (follow) {
+    const std::vector<uint64_t> stages = forecast_stages(anim, opt, follow->low_rank.components > 0);
+    meter->forecast({stages.begin() + kPlainStage, stages.end()});
+  }
+  // The file without a PDE model comes first: with --model none it is the file, otherwise
+  // the motion model has to beat it, value by value and as a whole file.
+  if (!have_plain && !encode_plain(anim, opt, start, &plain, error, nullptr, follow ? &*follow : nullptr)) return false;
+  meter->end_stage();
+  WriteOptions wo;
+  wo.connectivity = opt.connectivity;
+  // The file the PDE model's motions must beat (the fast profile then replaces its layer).
+  std::vector<uint8_t> file;
+  if (opt.chunk_frames == 0) {
+    const ChunkTrial trial = opt.effort == kMaxEffort ? ChunkTrial::Replan : ChunkTrial::Cut;
+    if (!choose_chunk_frames(&m, &coded, context_of(anim, opt, start), trial, &file, error)) return false;
+  } else {
+    file = write_container(m, wo);
+  }
+  meter->end_stage();
+  if (opt.model != ModelChoice::None) {
+    Model pde;
+    CodedResidual pde_coded;
+    MotionChoiceReport mrep;
+    std::string curve_fallback = rep->curve_fallback;
+    if (!encode_with_motions(anim, opt, start, plain, &pde, &pde_coded, &mrep, &curve_fallback, error)) return false;
+    rep->motions_fitted = mrep.fitted;
+    if (mrep.kept > 0) {
+      std::vector<uint8_t> with = write_container(pde, wo);
+      if (opt.keep_all_motions || with.size() < file.size()) {
+        file.swap(with);
+        m = std::move(pde);
+        coded = std::move(pde_coded);
+        rep->motions_kept = mrep.kept;
+        rep->curve_fallback = curve_fallback;
+      }
+    }
+  }
+  meter->end_stage();
+  // The search measured without block flags; the chosen layer gets them where smaller.
+  if (opt.profile == Profile::Fast) {
+    FastLayerOptions fo;
+    fo.snap_distance = start.snap;
+    fo.chunk_frames = opt.chunk_frames;
+    fo.threads = opt.threads;
+    const bool choose_model = opt.low_rank == -1 && !has_motion_model(m);
+    const std::vector<int32_t>* prediction = coded.prediction.empty() ? nullptr : &coded.prediction;
+    if (choose_model ? !choose_fast_low_rank(&m, anim.frames, start.rounded, fo, error)
+                     : !encode_fast_layer(&m, anim.frames, fo, error, prediction) ||
+                           !fast_low_rank_basis(&m, error, coded.basis.values.empty() ? nullptr : &coded.basis.values))
+      return false;
+  } else if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error, &coded)) {
+    return false;
+  }
+  *model = std::move(m);
+  return true;
+}
+
 }  // namespace
 
 // The float32 rounding may take at most a quarter of the tolerance.
@@ -361,73 +466,17 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
                        "input, " + format_number(minimum_tolerance(anim)) + " (rounding grows with the distance from the origin)");
 
   EncodeReport rep;
-  SpatialWeightsStore weights;
-  GridStart start;
-  start.weights = &weights;
   WorkMeter meter(opt.progress);
-  meter.forecast(forecast_stages(anim, opt));
-  start.meter = &meter;
-  PlainEncode plain;
-  Model& m = plain.model;
-  CodedResidual& coded = plain.coded;  // what m's payloads code
-  bool have_plain = false;
-  std::optional<TrialChoices> follow;
-  if (!start_model(anim, opt, &start, &plain, &have_plain, &follow, &rep.curve_fallback, error)) return false;
-  meter.end_stage();  // the grid (kGridStage)
-  if (follow) {
-    const std::vector<uint64_t> stages = forecast_stages(anim, opt, follow->low_rank.components > 0);
-    meter.forecast({stages.begin() + kPlainStage, stages.end()});
-  }
-  // The file without a PDE model comes first: with --model none it is the file, otherwise
-  // the motion model has to beat it, value by value and as a whole file.
-  if (!have_plain && !encode_plain(anim, opt, start, &plain, error, nullptr, follow ? &*follow : nullptr)) return false;
-  meter.end_stage();
-  WriteOptions wo;
-  wo.connectivity = opt.connectivity;
-  // The fast profile replaces this residual layer and picks its own chunks; only a PDE
-  // model's comparison below needs format 3's chosen file.
-  const bool fast_alone = opt.profile == Profile::Fast && opt.model == ModelChoice::None;
-  if (opt.chunk_frames == 0 && !fast_alone) {
-    const ChunkTrial trial = opt.effort == kMaxEffort ? ChunkTrial::Replan : ChunkTrial::Cut;
-    if (!choose_chunk_frames(&m, &coded, context_of(anim, opt, start), trial, out, error)) return false;
-  } else {
-    *out = write_container(m, wo);
-  }
-  meter.end_stage();
-  if (opt.model != ModelChoice::None) {
-    Model pde;
-    CodedResidual pde_coded;
-    MotionChoiceReport mrep;
-    std::string curve_fallback = rep.curve_fallback;
-    if (!encode_with_motions(anim, opt, start, plain, &pde, &pde_coded, &mrep, &curve_fallback, error)) return false;
-    rep.motions_fitted = mrep.fitted;
-    if (mrep.kept > 0) {
-      std::vector<uint8_t> with = write_container(pde, wo);
-      if (opt.keep_all_motions || with.size() < out->size()) {
-        out->swap(with);
-        m = std::move(pde);
-        coded = std::move(pde_coded);
-        rep.motions_kept = mrep.kept;
-        rep.curve_fallback = curve_fallback;
-      }
-    }
-  }
-  meter.end_stage();
-  // The search measured without block flags; the chosen layer gets them where smaller.
-  if (opt.profile == Profile::Fast) {
-    FastLayerOptions fo;
-    fo.snap_distance = start.snap;
-    fo.chunk_frames = opt.chunk_frames;
-    fo.threads = opt.threads;
-    const bool choose_model = opt.low_rank == -1 && !has_motion_model(m);
-    const std::vector<int32_t>* prediction = coded.prediction.empty() ? nullptr : &coded.prediction;
-    if (choose_model ? !choose_fast_low_rank(&m, anim.frames, start.rounded, fo, error)
-                     : !encode_fast_layer(&m, anim.frames, fo, error, prediction) ||
-                           !fast_low_rank_basis(&m, error, coded.basis.values.empty() ? nullptr : &coded.basis.values))
-      return false;
-  } else if (!use_block_flags(&m, BlockFlagUse::WhenSmaller, error, &coded)) {
+  Model m;
+  if (opt.profile == Profile::Fast && opt.model == ModelChoice::None) {
+    meter.forecast({forecast_fast_grid_frames(anim, opt.grid_refinement > 0 || opt.effort == kMinEffort,
+                                              opt.effort == kMaxEffort ? GridSearch::Walk : GridSearch::Bracket)});
+    if (!encode_fast_alone(anim, opt, &meter, &m, &rep.curve_fallback, error)) return false;
+  } else if (!encode_searched(anim, opt, &meter, &m, &rep, error)) {
     return false;
   }
+  WriteOptions wo;
+  wo.connectivity = opt.connectivity;
   if (!choose_inbetween(&m, anim.frames, opt.inbetween, error)) return false;
   // The fast profile's faces in the Traversal layout (or Exact where the list is not in its
   // order): the Compact layout's walk took most of a format 4 file's opening.

@@ -1,6 +1,9 @@
 #include "encoder/rate/fast_low_rank.h"
 
 #include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "codec/common/error.h"
 #include "codec/common/fast_residual.h"
@@ -10,6 +13,7 @@
 #include "codec/decompress/model_prediction.h"
 #include "codec/decompress/residual_decoder.h"
 #include "encoder/rate/low_rank.h"
+#include "encoder/work_meter.h"
 
 namespace dcurve {
 namespace {
@@ -19,7 +23,9 @@ namespace {
 // step in fewer bytes than its frames then lose (horse-gallop's best is near 0.4, a rope's
 // 0.25).
 constexpr double kBasisStep = 0.25, kStepRatio = 1.41421356237, kMaxBasisStep = 1.0;
-// Counts tried in order; the search stops after the file grew twice in a row.
+// The counts a search may try. The file's size is not convex in the count (the sheet scene:
+// a few components cost more than none, 48 far less), so every other one is tried first,
+// then the two beside the best.
 constexpr uint32_t kCounts[] = {0, 2, 4, 6, 8, 12, 16, 24, 32, 48, 64};
 
 // The whole file's bytes with a fast layer coded over `trial` (its payload replaced).
@@ -65,39 +71,95 @@ bool code_trial(const Model& base, const GridComponents& pca, uint32_t K, double
 }
 }  // namespace
 
+namespace {
+// The trials of one count search over a fixed model and input.
+class CountSearch {
+ public:
+  CountSearch(const Model& base, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
+              const FastLayerOptions& options)
+      : base_(base), frames_(frames), rounded_(rounded), options_(options),
+        pca_(grid_components(rounded, base.meta.frame_count, size_t(base.meta.vertex_count) * 3,
+                             std::min<uint32_t>(kMaxLowRankComponents,
+                                                base.meta.frame_count > 1 ? base.meta.frame_count - 1 : 0),
+                             kMeanAnchor)) {}
+
+  uint32_t max_count() const { return uint32_t(pca_.weights.size()); }
+  // Codes K components on `step` (K <= max_count()); keeps the trial when its file is the
+  // smallest so far. *coded: false when the model leaves the format's ranges.
+  bool try_count(uint32_t K, double step, bool* smaller, bool* coded, std::string* error) {
+    size_t bytes = 0;
+    if (!code_trial(base_, pca_, K, step, frames_, rounded_, options_, &trial_, &bytes, coded, error)) return false;
+    if (options_.meter) options_.meter->add(base_.meta.frame_count);
+    *smaller = *coded && bytes < best_bytes_;
+    if (*smaller) {
+      best_bytes_ = bytes;
+      best_ = std::move(trial_);
+      best_count_ = K;
+    }
+    return true;
+  }
+  uint32_t best_count() const { return best_count_; }
+  size_t best_bytes() const { return best_bytes_; }
+  Model take_best() { return std::move(best_); }
+
+ private:
+  const Model& base_;
+  const std::vector<std::vector<float>>& frames_;
+  const std::vector<int32_t>& rounded_;
+  const FastLayerOptions& options_;
+  const GridComponents pca_;
+  Model best_, trial_;
+  size_t best_bytes_ = SIZE_MAX;
+  uint32_t best_count_ = 0;
+};
+
+// The counts of kCounts below the most the frames have, then that most: every other one,
+// the last always, then the two beside the best.
+bool search_counts(CountSearch* search, std::string* error) {
+  std::vector<uint32_t> ladder;
+  for (uint32_t K : kCounts)
+    if (K < search->max_count()) ladder.push_back(K);
+  ladder.push_back(search->max_count());
+  std::vector<uint8_t> tried(ladder.size(), 0);
+  bool smaller = false, coded = true;
+  size_t best = 0;
+  auto run = [&](size_t i) {
+    if (i >= ladder.size() || tried[i] || !coded) return true;
+    tried[i] = 1;
+    if (!search->try_count(ladder[i], kBasisStep, &smaller, &coded, error)) return false;
+    if (smaller) best = i;
+    return true;
+  };
+  for (size_t i = 0; i < ladder.size(); i += 2)
+    if (!run(i)) return false;
+  if (!run(ladder.size() - 1)) return false;
+  const size_t centre = best;
+  coded = true;  // a count past the format's ranges stops the larger ones only
+  return (centre == 0 || run(centre - 1)) && run(centre + 1);
+}
+}  // namespace
+
 bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
-                          const FastLayerOptions& options, std::string* error) {
-  const uint32_t F = m->meta.frame_count;
-  const size_t n = size_t(m->meta.vertex_count) * 3;
+                          const FastLayerOptions& options, std::string* error, size_t* bytes) {
   Model base = *m;
   base.low_rank = LowRankModel();
-  const GridComponents pca =
-      grid_components(rounded, F, n, std::min<uint32_t>(kMaxLowRankComponents, F > 1 ? F - 1 : 0), kMeanAnchor);
-  Model best, trial;
-  size_t best_bytes = SIZE_MAX, bytes = 0;
-  uint32_t best_count = 0;
-  bool coded = true;
-  int worse = 0;
-  for (uint32_t K : kCounts) {
-    if (K > pca.weights.size() || worse >= 2) break;
-    if (!code_trial(base, pca, K, kBasisStep, frames, rounded, options, &trial, &bytes, &coded, error)) return false;
-    if (!coded) break;
-    if (bytes < best_bytes) {
-      best_bytes = bytes;
-      best = std::move(trial);
-      best_count = K;
-      worse = 0;
-    } else {
-      ++worse;
-    }
+  CountSearch search(base, frames, rounded, options);
+  bool smaller = false, coded = true;
+  if (options.components < 0) {
+    if (!search_counts(&search, error)) return false;
+  } else if (!search.try_count(std::min<uint32_t>(uint32_t(options.components), search.max_count()), kBasisStep,
+                               &smaller, &coded, error) ||
+             (!coded && !search.try_count(0, kBasisStep, &smaller, &coded, error))) {
+    return false;  // a count the format cannot hold gives the file without a model
   }
-  for (double step = kBasisStep * kStepRatio; best_count > 0 && step <= kMaxBasisStep; step *= kStepRatio) {
-    if (!code_trial(base, pca, best_count, step, frames, rounded, options, &trial, &bytes, &coded, error)) return false;
-    if (!coded || bytes >= best_bytes) break;
-    best_bytes = bytes;
-    best = std::move(trial);
+  if (search.best_bytes() == SIZE_MAX) return fail(error, "internal error: no low-rank trial could be coded");
+  const uint32_t K = search.best_count();
+  for (double step = kBasisStep * kStepRatio; K > 0 && step <= kMaxBasisStep; step *= kStepRatio) {
+    if (!search.try_count(K, step, &smaller, &coded, error)) return false;
+    if (!smaller) break;
   }
-  *m = std::move(best);
+  if (bytes) *bytes = search.best_bytes();
+  *m = search.take_best();
   return true;
 }
 

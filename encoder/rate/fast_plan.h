@@ -11,10 +11,16 @@
 
 namespace dcurve {
 
+class WorkMeter;
+
 struct FastLayerOptions {
   double snap_distance = 0;  // how far a grid value may sit from the input, model units
   uint32_t chunk_frames = 0;  // 0: chosen here
   int threads = 0;            // 0: all cores
+  // choose_fast_low_rank's component count: -1 searched, 0 none, else that many (at most
+  // what the frames have).
+  int components = -1;
+  WorkMeter* meter = nullptr;  // counts the frames of every low-rank trial; may be null
 };
 
 // Replaces m's residual payload (its grid step and origin kept, its Model prediction, LRNK
