@@ -4,10 +4,6 @@
 
 namespace dcurve {
 namespace fast_residual {
-namespace {
-int32_t to_int32(int64_t v) { return int32_t(std::clamp<int64_t>(v, INT32_MIN, INT32_MAX)); }
-}  // namespace
-
 // One loop per kind, each a plain pass the compiler vectorises.
 void predict_frame(FrameKind kind, const int32_t* q1, const int32_t* q2, const int32_t* M, const int32_t* M1,
                    size_t n, int32_t* out) {
@@ -16,13 +12,13 @@ void predict_frame(FrameKind kind, const int32_t* q1, const int32_t* q2, const i
       std::copy(q1, q1 + n, out);
       return;
     case FrameKind::Linear:
-      for (size_t i = 0; i < n; ++i) out[i] = to_int32(2 * int64_t(q1[i]) - q2[i]);
+      for (size_t i = 0; i < n; ++i) out[i] = clamp_int32(2 * int64_t(q1[i]) - q2[i]);
       return;
     case FrameKind::Model:
       std::copy(M, M + n, out);
       return;
     case FrameKind::ModelDelta:
-      for (size_t i = 0; i < n; ++i) out[i] = to_int32(int64_t(M[i]) + q1[i] - M1[i]);
+      for (size_t i = 0; i < n; ++i) out[i] = clamp_int32(int64_t(M[i]) + q1[i] - M1[i]);
       return;
     case FrameKind::None:
       std::fill(out, out + n, 0);

@@ -5,6 +5,7 @@
 // frame), and only the non-zero residuals are coded, in vertex-id order, as byte tokens
 // through zstd, whose tables are static per stream.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -70,6 +71,9 @@ constexpr uint8_t kValueEscape = 255;
 // Stream coding byte.
 constexpr uint8_t kStreamRaw = 0;
 constexpr uint8_t kStreamZstd = 1;
+
+// A base prediction's clamp to int32 (section 10.2).
+inline int32_t clamp_int32(int64_t v) { return int32_t(std::clamp<int64_t>(v, INT32_MIN, INT32_MAX)); }
 
 // The base prediction of one frame of n = V * 3 values, clamped to int32 (q1, q2, M, M1 may
 // be null when the kind does not read them).

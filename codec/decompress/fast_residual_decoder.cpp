@@ -21,7 +21,7 @@ constexpr uint32_t kFitFramesSideBySide = 8;
 
 size_t FastChunkDecoder::memory_bytes() const {
   return sizeof(*this) + kinds_.capacity() + (op_counts_.capacity() + checksums_.capacity()) * 4 + ops_.capacity() +
-         values_.capacity() + spatial_.capacity() * sizeof(int64_t) + lanes_size_ * sizeof(int32_t);
+         values_.capacity() + lanes_size_ * sizeof(int32_t);
 }
 
 namespace {
@@ -105,20 +105,51 @@ bool FastChunkDecoder::add_residuals(int32_t* out) {
 }
 
 namespace {
-// What the traversal predicts for position i's three axes from the corrections e of the
-// positions before it (position-major): fast_spatial for the three at once, the type read once.
-inline void predict_position(FastSpatial type, const uint32_t* r, const int64_t* e, int64_t* p) {
-  const int64_t* x = e + size_t(r[0]) * 3;
-  const int64_t* y = e + size_t(r[1]) * 3;
-  const int64_t* z = e + size_t(r[2]) * 3;
+// Base predictions P of value i (vertex-major, int64, clamped as 10.2 says) computed where a
+// spatial frame reads them: a correction e = q - P of an earlier position comes back from the
+// decoded q and the frames P reads, so no frame-sized buffer of corrections is kept.
+struct NoBase {
+  int64_t operator()(size_t) const { return 0; }
+};
+struct CopyBase {  // Previous (q1) or Model (M)
+  const int32_t* src;
+  int64_t operator()(size_t i) const { return src[i]; }
+};
+struct LinearBase {
+  const int32_t *q1, *q2;
+  int64_t operator()(size_t i) const { return clamp_int32(2 * int64_t(q1[i]) - q2[i]); }
+};
+struct ModelDeltaBase {
+  const int32_t *M, *q1, *M1;
+  int64_t operator()(size_t i) const { return clamp_int32(int64_t(M[i]) + q1[i] - M1[i]); }
+};
+
+// The corrections of the vertex at an earlier position (its values q already in out).
+template <class Base>
+inline void corrections_at(const Base& base, const int32_t* out, uint32_t v, int64_t* e) {
+  const size_t i = size_t(v) * 3;
+  for (int a = 0; a < 3; ++a) e[a] = int64_t(out[i + size_t(a)]) - base(i + size_t(a));
+}
+
+// What the traversal predicts for position i's three axes from the corrections of the
+// positions before it: fast_spatial for the three at once, the type read once.
+template <class Base>
+inline void predict_position(FastSpatial type, const uint32_t* r, const FastTraversal& t, const Base& base,
+                             const int32_t* out, int64_t* p) {
+  int64_t x[3], y[3], z[3];
   switch (type) {
     case FastSpatial::Copy:
-      for (int a = 0; a < 3; ++a) p[a] = x[a];
+      corrections_at(base, out, t.order[r[0]], p);
       break;
     case FastSpatial::Mean:
+      corrections_at(base, out, t.order[r[0]], x);
+      corrections_at(base, out, t.order[r[1]], y);
       for (int a = 0; a < 3; ++a) p[a] = (x[a] + y[a] + 1) >> 1;
       break;
     case FastSpatial::Parallelogram:
+      corrections_at(base, out, t.order[r[0]], x);
+      corrections_at(base, out, t.order[r[1]], y);
+      corrections_at(base, out, t.order[r[2]], z);
       for (int a = 0; a < 3; ++a) p[a] = x[a] + y[a] - z[a];
       break;
     default:
@@ -131,18 +162,17 @@ bool FastChunkDecoder::uses_fit() const { return std::any_of(kinds_.begin(), kin
 
 // Spatial frames: in traversal order, each position's residual (zero unless the ops name it)
 // plus what the traversal predicts from the positions before it is the correction of the
-// base prediction. One pass, no buffer to clear.
-bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth) {
+// base prediction. One pass; out needs no prediction written first.
+template <class Base>
+bool FastChunkDecoder::add_spatial_residuals(const Base& base, int32_t* out, bool smooth) {
   const FastTraversal& t = *traversal_;
-  spatial_.resize(size_t(V_) * 3);
-  int64_t* e = spatial_.data();  // position-major
   OpCursor c{ops_, op_pos_, op_pos_ + op_counts_[next_], V_};
   if (!c.next()) return false;
   for (uint32_t i = 0; i < V_; ++i) {
     FastSpatial type = FastSpatial(t.type[i]);
     if (smooth && type == FastSpatial::Parallelogram) type = FastSpatial::Mean;
-    int64_t* x = e + size_t(i) * 3;
-    predict_position(type, &t.refs[size_t(i) * 3], e, x);
+    int64_t x[3];
+    predict_position(type, &t.refs[size_t(i) * 3], t, base, out, x);
     if (i == c.slot) {
       for (int a = 0; a < 3; ++a) {
         int64_t r = 0;
@@ -151,29 +181,40 @@ bool FastChunkDecoder::add_spatial_residuals(int32_t* out, bool smooth) {
       }
       if (!c.next()) return false;
     }
-    int32_t* o = out + size_t(t.order[i]) * 3;
-    const int64_t q0 = int64_t(o[0]) + x[0], q1 = int64_t(o[1]) + x[1], q2 = int64_t(o[2]) + x[2];
+    const size_t o = size_t(t.order[i]) * 3;
+    const int64_t q0 = base(o) + x[0], q1 = base(o + 1) + x[1], q2 = base(o + 2) + x[2];
     // Rejecting q outside int32 also keeps every e within 2^33, so the sums stay small.
     if (!in_int32(q0) || !in_int32(q1) || !in_int32(q2)) return false;
-    o[0] = int32_t(q0);
-    o[1] = int32_t(q1);
-    o[2] = int32_t(q2);
+    out[o] = int32_t(q0);
+    out[o + 1] = int32_t(q1);
+    out[o + 2] = int32_t(q2);
   }
   op_pos_ = c.pos;
   return true;
 }
 
+// add_spatial_residuals for the frame's base kind.
+bool FastChunkDecoder::add_spatial_frame(FrameKind kind, const int32_t* q1, const int32_t* q2, const int32_t* M,
+                                         const int32_t* M1, int32_t* out, bool smooth) {
+  switch (kind) {
+    case FrameKind::Previous: return add_spatial_residuals(CopyBase{q1}, out, smooth);
+    case FrameKind::Linear: return add_spatial_residuals(LinearBase{q1, q2}, out, smooth);
+    case FrameKind::Model: return add_spatial_residuals(CopyBase{M}, out, smooth);
+    case FrameKind::ModelDelta: return add_spatial_residuals(ModelDeltaBase{M, q1, M1}, out, smooth);
+    default: return add_spatial_residuals(NoBase{}, out, smooth);
+  }
+}
+
 bool FastChunkDecoder::decode_frame(const int32_t* q1, const int32_t* q2, const int32_t* M, const int32_t* M1,
                                     int32_t* out, std::string* error) {
   if (next_ >= kinds_.size()) return fail(error, "fast residual chunk has no more frames");
-  const size_t n = size_t(V_) * 3;
-  predict_frame(kind(next_), q1, q2, M, M1, n, out);
   const uint8_t k = kinds_[next_];
   const bool spatial = has_spatial(k);
   if (spatial && (!traversal_ || traversal_->order.size() != V_))
     return fail(error, "fast residual frame needs the vertex traversal, which was not supplied");
   if (is_fit(k)) return fail(error, "internal error: a Fit frame is decoded by decode_fit_frames");
-  if (!(spatial ? add_spatial_residuals(out, is_smooth(k)) : add_residuals(out)))
+  if (!spatial) predict_frame(kind(next_), q1, q2, M, M1, size_t(V_) * 3, out);
+  if (!(spatial ? add_spatial_frame(kind(next_), q1, q2, M, M1, out, is_smooth(k)) : add_residuals(out)))
     return fail(error, "fast residual frame " + std::to_string(next_) + " is corrupted or decodes out of range");
   return finish_frame(out, error);
 }

@@ -47,12 +47,14 @@ class FastChunkDecoder {
 
  private:
   bool add_residuals(int32_t* out);
-  bool add_spatial_residuals(int32_t* out, bool smooth);
+  template <class Base>
+  bool add_spatial_residuals(const Base& base, int32_t* out, bool smooth);
+  bool add_spatial_frame(fast_residual::FrameKind kind, const int32_t* q1, const int32_t* q2, const int32_t* M,
+                         const int32_t* M1, int32_t* out, bool smooth);
   bool finish_frame(const int32_t* out, std::string* error);
 
   const FastTraversal* traversal_ = nullptr;
   const FastFit* fit_ = nullptr;
-  std::vector<int64_t> spatial_;  // per vertex and axis: residuals, then what the traversal predicts
   // decode_fit_frames: per position, the frames' values side by side (uninitialized: every
   // lane is written before it is read), kept for the next group of Fit frames.
   std::unique_ptr<int32_t[]> lanes_;
