@@ -260,22 +260,31 @@ TEST(LowRank, RoundShiftIsHalfUpDivision) {
 }
 
 // The frame is summed tile by tile: every value, across tile edges and a last partial tile,
-// from 16- and 32-bit tables, is the rounded, clamped sum written out in 128 bits.
+// from 32-bit tables, 16-bit pairs in int64 and 16-bit pairs in int32 (coefficients small
+// enough; the last case sits at the bound, so its frames take either), is the rounded,
+// clamped sum written out in 128 bits.
 TEST(LowRank, FrameValuesAreTheDirectSumsInEveryTile) {
   std::mt19937 rng(11);
-  const size_t n = 3 * 777;  // tiles of 512 and a partial one
-  for (const int64_t amplitude : {int64_t(30000), kMaxLowRankBasis}) {
+  const size_t n = 3 * 777;  // tiles of 512 and a partial one; not a multiple of 8
+  struct Case {
+    int64_t amplitude;
+    int32_t coeff;
+    uint32_t shift;
+  };
+  for (const Case& t : {Case{30000, 1 << 20, 20}, Case{kMaxLowRankBasis, 1 << 20, 20}, Case{30000, 300, 10},
+                        Case{30000, 7000, 10}}) {
+    const int64_t amplitude = t.amplitude;
     LowRankModel lr;
-    lr.components = 5;
-    lr.shift = 20;
+    lr.components = 5;  // odd: the last pair is padded
+    lr.shift = t.shift;
     lr.mean_shift = 2;
-    std::uniform_int_distribution<int32_t> coeff(-(1 << 20), 1 << 20), value(-int32_t(amplitude), int32_t(amplitude));
+    std::uniform_int_distribution<int32_t> coeff(-t.coeff, t.coeff), value(-int32_t(amplitude), int32_t(amplitude));
     for (uint32_t i = 0; i < 2 * lr.components; ++i) lr.coeffs.push_back(i == 3 ? 0 : coeff(rng));
     std::vector<int32_t> mean_and_basis((lr.components + 1) * n);
     for (int32_t& v : mean_and_basis) v = value(rng);
     LowRankTables tables;
     tables.assign(mean_and_basis, n);
-    ASSERT_EQ(tables.basis16.empty(), amplitude > INT16_MAX);
+    ASSERT_EQ(tables.pairs16.empty(), amplitude > INT16_MAX);
     std::vector<int32_t> direct(n), from_tables(n);
     for (uint32_t f = 0; f < 2; ++f) {
       low_rank_frame(lr, f, mean_and_basis.data(), n, direct.data());

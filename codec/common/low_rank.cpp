@@ -2,6 +2,10 @@
 
 #include <algorithm>
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
+
 namespace dcurve {
 namespace {
 // Values per tile: a tile's sums (4 KB) stay in L1 while all K basis vectors are added, where
@@ -9,15 +13,28 @@ namespace {
 constexpr size_t kTile = 512;
 constexpr int64_t kFrameLimit = int64_t(1) << 30;  // as the PDE model's grid prediction
 
-// out[i] for one tile of `count` values at `begin`: mean * 2^(shift - mean_shift) plus the
-// frame's coefficients c times the basis, rounded by 2^shift and clamped. |mean| * 2^30 <
-// 2^61 and 64 products of at most 2^48: |sum| < 2^61 + 2^54.
-// Inlined into each build of frame_values below, so each is compiled for its instruction set.
+// The tiles' steps are inlined into each build of frame_values below, so each is compiled for
+// its instruction set.
 #if defined(__GNUC__)
 #define DCURVE_INLINE inline __attribute__((always_inline))
 #else
 #define DCURVE_INLINE inline
 #endif
+
+// round_shift(acc, s) clamped, as a shift of a non-negative value, so it vectorizes: |acc| <
+// 2^61 + 2^54 (tile_values), so acc + half + 2^62 lies in [0, 2^63), and 2^62 is a multiple of
+// 2^s (s <= 30).
+DCURVE_INLINE void round_tile(const int64_t* acc, size_t count, uint32_t s, int32_t* out) {
+  const int64_t bias = int64_t(1) << 62, half = s ? int64_t(1) << (s - 1) : 0;
+  for (size_t i = 0; i < count; ++i) {
+    const int64_t rounded = ((acc[i] + half + bias) >> s) - (bias >> s);
+    out[i] = int32_t(std::clamp(rounded, -kFrameLimit, kFrameLimit));
+  }
+}
+
+// out[i] for one tile of `count` values at `begin`: mean * 2^(shift - mean_shift) plus the
+// frame's coefficients c times the basis, rounded by 2^shift and clamped. |mean| * 2^30 <
+// 2^61 and 64 products of at most 2^48: |sum| < 2^61 + 2^54.
 template <class Basis>
 DCURVE_INLINE void tile_values(const LowRankModel& lr, const int32_t* c, const int32_t* mean, const Basis* basis,
                                size_t n, size_t begin, size_t count, int32_t* out) {
@@ -30,15 +47,42 @@ DCURVE_INLINE void tile_values(const LowRankModel& lr, const int32_t* c, const i
     const Basis* b = basis + size_t(k) * n + begin;
     for (size_t i = 0; i < count; ++i) acc[i] += ck * int64_t(b[i]);
   }
-  // round_shift(acc, shift) as a shift of a non-negative value, so it vectorizes: |acc| <
-  // 2^61 + 2^54 (above), so acc + half + 2^62 lies in [0, 2^63), and 2^62 is a multiple of
-  // 2^shift (shift <= 30).
-  const uint32_t s = lr.shift;
-  const int64_t bias = int64_t(1) << 62, half = s ? int64_t(1) << (s - 1) : 0;
-  for (size_t i = 0; i < count; ++i) {
-    const int64_t rounded = ((acc[i] + half + bias) >> s) - (bias >> s);
-    out[begin + i] = int32_t(std::clamp(rounded, -kFrameLimit, kFrameLimit));
+  round_tile(acc, count, lr.shift, out + begin);
+}
+
+// tile_values for the component pairs of LowRankTables::pairs16, in int64.
+DCURVE_INLINE void tile_values_paired(const LowRankModel& lr, const int32_t* c, const int32_t* mean,
+                                      const int16_t* pairs, size_t n, size_t begin, size_t count, int32_t* out) {
+  int64_t acc[kTile];
+  const int64_t up = int64_t(1) << (lr.shift - lr.mean_shift);
+  for (size_t i = 0; i < count; ++i) acc[i] = int64_t(mean[begin + i]) * up;
+  for (uint32_t k = 0; k < lr.components; k += 2) {
+    const int64_t c0 = c[k], c1 = k + 1 < lr.components ? c[k + 1] : 0;
+    if (c0 == 0 && c1 == 0) continue;
+    const int16_t* b = pairs + (size_t(k / 2) * n + begin) * 2;
+    for (size_t i = 0; i < count; ++i) acc[i] += c0 * int64_t(b[2 * i]) + c1 * int64_t(b[2 * i + 1]);
   }
+  round_tile(acc, count, lr.shift, out + begin);
+}
+
+// tile_values in int32 for a frame whose every partial sum is known to stay below 2^30 (with
+// the rounding's half): each pair of 16-bit coefficients and values is one multiply-add
+// (pmaddwd on x86, i32x4.dot_i16x8 in WebAssembly) where the vectorizer finds it.
+DCURVE_INLINE void tile_values_narrow(const LowRankModel& lr, const int16_t* c, uint32_t pair_count, const int32_t* mean,
+                                      const int16_t* pairs, size_t n, size_t begin, size_t count, int32_t* out) {
+  int32_t acc[kTile];
+  const int32_t up = int32_t(1) << (lr.shift - lr.mean_shift);
+  for (size_t i = 0; i < count; ++i) acc[i] = mean[begin + i] * up;
+  for (uint32_t j = 0; j < pair_count; ++j) {
+    const int16_t c0 = c[2 * j], c1 = c[2 * j + 1];
+    if (c0 == 0 && c1 == 0) continue;
+    const int16_t* b = pairs + (size_t(j) * n + begin) * 2;
+    for (size_t i = 0; i < count; ++i) acc[i] += int32_t(b[2 * i]) * c0 + int32_t(b[2 * i + 1]) * c1;
+  }
+  // As tile_values' rounding with a bias of 2^30: acc + half + 2^30 lies in [0, 2^31).
+  const uint32_t s = lr.shift;
+  const int32_t bias = int32_t(1) << 30, half = s ? int32_t(1) << (s - 1) : 0;
+  for (size_t i = 0; i < count; ++i) out[begin + i] = ((acc[i] + half + bias) >> s) - (bias >> s);
 }
 
 // The frame's sums tile by tile: most of a low-rank file's decode. Built twice on x86-64
@@ -53,12 +97,76 @@ DCURVE_INLINE void tile_values(const LowRankModel& lr, const int32_t* c, const i
 #endif
 // Two plain functions, not a template: clang accepts target_clones on functions only.
 DCURVE_MULTIVERSION void frame_values(const LowRankModel& lr, const int32_t* c, const int32_t* mean,
-                                      const int16_t* basis, size_t n, int32_t* out) {
-  for (size_t begin = 0; begin < n; begin += kTile) tile_values(lr, c, mean, basis, n, begin, std::min(kTile, n - begin), out);
-}
-DCURVE_MULTIVERSION void frame_values(const LowRankModel& lr, const int32_t* c, const int32_t* mean,
                                       const int32_t* basis, size_t n, int32_t* out) {
   for (size_t begin = 0; begin < n; begin += kTile) tile_values(lr, c, mean, basis, n, begin, std::min(kTile, n - begin), out);
+}
+DCURVE_MULTIVERSION void frame_values_paired(const LowRankModel& lr, const int32_t* c, const int32_t* mean,
+                                             const int16_t* pairs, size_t n, int32_t* out) {
+  for (size_t begin = 0; begin < n; begin += kTile)
+    tile_values_paired(lr, c, mean, pairs, n, begin, std::min(kTile, n - begin), out);
+}
+void frame_values_narrow_plain(const LowRankModel& lr, const int16_t* c, uint32_t pair_count, const int32_t* mean,
+                               const int16_t* pairs, size_t n, int32_t* out) {
+  for (size_t begin = 0; begin < n; begin += kTile)
+    tile_values_narrow(lr, c, pair_count, mean, pairs, n, begin, std::min(kTile, n - begin), out);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// frame_values_narrow_plain with AVX2's 16-bit multiply-add (vpmaddwd: eight values of a
+// component pair per instruction), eight values at a time across all pairs in a register.
+__attribute__((target("avx2"))) void frame_values_narrow_avx2(const LowRankModel& lr, const int16_t* c,
+                                                              uint32_t pair_count, const int32_t* mean,
+                                                              const int16_t* pairs, size_t n, int32_t* out) {
+  int32_t words[kMaxLowRankComponents / 2 + 1];
+  uint32_t used[kMaxLowRankComponents / 2 + 1], u = 0;
+  for (uint32_t j = 0; j < pair_count; ++j) {
+    words[j] = int32_t(uint32_t(uint16_t(c[2 * j])) | uint32_t(uint16_t(c[2 * j + 1])) << 16);
+    if (words[j] != 0) used[u++] = j;
+  }
+  const int up_shift = int(lr.shift - lr.mean_shift), s = int(lr.shift);
+  const int32_t bias = int32_t(1) << 30, half = s ? int32_t(1) << (s - 1) : 0;
+  const __m256i add = _mm256_set1_epi32(half + bias), sub = _mm256_set1_epi32(bias >> s);
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    __m256i acc = _mm256_slli_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(mean + i)), up_shift);
+    for (uint32_t k = 0; k < u; ++k) {
+      const uint32_t j = used[k];
+      const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pairs + (size_t(j) * n + i) * 2));
+      acc = _mm256_add_epi32(acc, _mm256_madd_epi16(b, _mm256_set1_epi32(words[j])));
+    }
+    acc = _mm256_sub_epi32(_mm256_srai_epi32(_mm256_add_epi32(acc, add), s), sub);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i), acc);
+  }
+  if (i < n) tile_values_narrow(lr, c, pair_count, mean, pairs, n, i, n - i, out);
+}
+bool has_avx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+#endif
+
+void frame_values_narrow(const LowRankModel& lr, const int16_t* c, uint32_t pair_count, const int32_t* mean,
+                         const int16_t* pairs, size_t n, int32_t* out) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (has_avx2()) return frame_values_narrow_avx2(lr, c, pair_count, mean, pairs, n, out);
+#endif
+  frame_values_narrow_plain(lr, c, pair_count, mean, pairs, n, out);
+}
+
+// Frame f's coefficients in 16 bits, padded to whole pairs, when every partial sum of its
+// values (mean term, products, rounding half) provably stays below 2^30; else false.
+bool narrow_coefficients(const LowRankModel& lr, const LowRankTables& t, uint32_t f, int16_t* c16) {
+  const int32_t* c = lr.coeffs.data() + size_t(f) * lr.components;
+  const uint32_t s = lr.shift;
+  uint64_t bound = (uint64_t(t.mean_max) << (s - lr.mean_shift)) + (s ? uint64_t(1) << (s - 1) : 0);
+  for (uint32_t k = 0; k < lr.components; ++k) {
+    if (c[k] < INT16_MIN || c[k] > INT16_MAX) return false;
+    c16[k] = int16_t(c[k]);
+    bound += uint64_t(c[k] < 0 ? -int64_t(c[k]) : c[k]) * t.basis_max[k];
+    if (bound >= uint64_t(1) << 30) return false;
+  }
+  if (lr.components % 2) c16[lr.components] = 0;
+  return true;
 }
 
 // Format 2.5: each vertex's three values mapped by frame f's pose.
@@ -83,14 +191,29 @@ void frame_from(const LowRankModel& lr, uint32_t f, const int32_t* mean, const B
 }
 }  // namespace
 
+namespace {
+uint32_t magnitude(int32_t v) { return v < 0 ? uint32_t(-int64_t(v)) : uint32_t(v); }
+}  // namespace
+
 void LowRankTables::assign(const std::vector<int32_t>& mean_and_basis, size_t n) {
   mean.assign(mean_and_basis.begin(), mean_and_basis.begin() + std::ptrdiff_t(n));
   const auto first = mean_and_basis.begin() + std::ptrdiff_t(n);
   const bool narrow = std::all_of(first, mean_and_basis.end(), [](int32_t v) { return v >= INT16_MIN && v <= INT16_MAX; });
-  basis16.clear();
+  const size_t K = n ? (mean_and_basis.size() - n) / n : 0;
+  mean_max = 0;
+  for (int32_t v : mean) mean_max = std::max(mean_max, magnitude(v));
+  basis_max.assign(K, 0);
+  for (size_t k = 0; k < K; ++k)
+    for (size_t i = 0; i < n; ++i) basis_max[k] = std::max(basis_max[k], magnitude(first[std::ptrdiff_t(k * n + i)]));
+  pairs16.clear();
   basis32.clear();
-  if (narrow) basis16.assign(first, mean_and_basis.end());
-  else basis32.assign(first, mean_and_basis.end());
+  if (!narrow) {
+    basis32.assign(first, mean_and_basis.end());
+    return;
+  }
+  pairs16.assign((K + 1) / 2 * n * 2, 0);
+  for (size_t k = 0; k < K; ++k)
+    for (size_t i = 0; i < n; ++i) pairs16[(k / 2 * n + i) * 2 + k % 2] = int16_t(first[std::ptrdiff_t(k * n + i)]);
 }
 
 void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_basis, size_t n, int32_t* out) {
@@ -98,8 +221,16 @@ void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_
 }
 
 void low_rank_frame(const LowRankModel& lr, uint32_t f, const LowRankTables& t, size_t n, int32_t* out) {
-  if (t.basis32.empty()) frame_from(lr, f, t.mean.data(), t.basis16.data(), n, out);
-  else frame_from(lr, f, t.mean.data(), t.basis32.data(), n, out);
+  int16_t c16[kMaxLowRankComponents + 1];
+  if (!t.basis32.empty() || lr.components == 0) {
+    frame_from(lr, f, t.mean.data(), t.basis32.data(), n, out);
+    return;
+  }
+  if (narrow_coefficients(lr, t, f, c16))
+    frame_values_narrow(lr, c16, (lr.components + 1) / 2, t.mean.data(), t.pairs16.data(), n, out);
+  else
+    frame_values_paired(lr, lr.coeffs.data() + size_t(f) * lr.components, t.mean.data(), t.pairs16.data(), n, out);
+  if (!lr.poses.empty()) apply_pose(lr, f, n, out);
 }
 
 }  // namespace dcurve

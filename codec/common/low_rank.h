@@ -54,14 +54,21 @@ inline int64_t round_shift(int64_t x, uint32_t s) {
 void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_basis, size_t n, int32_t* out);
 
 // The decoded mean and basis as a decoder keeps them: the basis in 16 bits when every value
-// fits (half the memory; most files), else in 32.
+// fits (half the memory; most files), else in 32. In 16 bits the components go in pairs,
+// value by value (component 2j's value i, then 2j + 1's; a zero component pads an odd K), so
+// a frame whose sums provably stay within 2^30 (low_rank_frame checks per frame; the
+// files measured all do) is summed in int32 two components per multiply-add.
 struct LowRankTables {
   std::vector<int32_t> mean;
-  std::vector<int16_t> basis16;
-  std::vector<int32_t> basis32;
+  std::vector<int16_t> pairs16;  // [K / 2 rounded up][n][2]
+  std::vector<int32_t> basis32;  // [K][n]
+  uint32_t mean_max = 0;              // max |mean|
+  std::vector<uint32_t> basis_max;    // per component, max |value|
   // From the decoded pseudo-frames: the mean, then the K basis vectors, n values each.
   void assign(const std::vector<int32_t>& mean_and_basis, size_t n);
-  size_t bytes() const { return mean.capacity() * 4 + basis16.capacity() * 2 + basis32.capacity() * 4; }
+  size_t bytes() const {
+    return mean.capacity() * 4 + pairs16.capacity() * 2 + basis32.capacity() * 4 + basis_max.capacity() * 4;
+  }
 };
 // low_rank_frame from the tables.
 void low_rank_frame(const LowRankModel& lr, uint32_t f, const LowRankTables& tables, size_t n, int32_t* out);
