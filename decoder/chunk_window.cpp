@@ -150,13 +150,23 @@ bool ChunkWindow::decode_fast_frame(Error* error) {
 }
 
 // Frame f from the ring, else decoded: onwards from the open chunk's next frame when f lies
-// ahead of it, else from the start of f's chunk. A decode keeps the two frames before it, so
-// the frame evaluate holds (f - 1 when it asks for f) stays valid.
+// ahead of it, else from the start of f's chunk; frames before the last one up to f that
+// reads no earlier frame (a Model or None kind: most frames of a low-rank file) are stepped
+// over, not decoded, so a seek costs about one frame. A decode keeps the two frames before
+// it, so the frame evaluate holds (f - 1 when it asks for f) stays valid.
 const int32_t* ChunkWindow::fast_frame_values(uint32_t f, Error* error) {
   for (const FrameSlot& s : ring_)
     if (s.frame == f) return s.values.data();
   const uint32_t K = shared_.index.chunk_frames, c = f / K, local = f - c * K;
   if ((c != fast_chunk_ || fast_.next() > local) && !open_fast_chunk(c, error)) return nullptr;
+  uint32_t start = local;
+  while (start > fast_.next() && fast_residual::frames_needed(fast_.kind(start)) > 0) --start;
+  std::string why;
+  if (start > fast_.next() && !fast_.skip_frames(start - fast_.next(), &why)) {
+    fast_chunk_ = UINT32_MAX;
+    if (error) *error = {Status::CorruptChunk, "chunk " + std::to_string(c) + ": " + why};
+    return nullptr;
+  }
   while (fast_.next() <= local)
     if (!decode_fast_frame(error)) return nullptr;
   for (const FrameSlot& s : ring_)

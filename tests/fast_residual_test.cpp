@@ -201,11 +201,12 @@ Animation waving_sheet(uint32_t frames) {
   return a;
 }
 
-std::vector<uint8_t> encode_fast(const Animation& a, int low_rank) {
+std::vector<uint8_t> encode_fast(const Animation& a, int low_rank, uint32_t chunk_frames = 0) {
   EncodeOptions o;
   o.profile = Profile::Fast;
   o.grid_refinement = 2;
   o.low_rank = low_rank;
+  o.chunk_frames = chunk_frames;
   std::vector<uint8_t> bytes;
   std::string err;
   EXPECT_TRUE(encode_animation(a, o, &bytes, nullptr, &err)) << err;
@@ -226,9 +227,14 @@ TEST(FastResidual, FastProfileWritesFormat4WithinTheTolerance) {
   }
 }
 
-TEST(FastResidual, AnyFrameInAnyOrderDecodesAsSequentialPlayback) {
+// Chunks of the encoder's length (4 here) and of 16, whose Model frames a seek starts from
+// (the frames before them stepped over, not decoded).
+class FastSeek : public ::testing::TestWithParam<uint32_t> {};
+INSTANTIATE_TEST_SUITE_P(FastResidual, FastSeek, ::testing::Values(0u, 16u));
+
+TEST_P(FastSeek, AnyFrameInAnyOrderDecodesAsSequentialPlayback) {
   const Animation a = waving_sheet(23);
-  const std::vector<uint8_t> bytes = encode_fast(a, -1);
+  const std::vector<uint8_t> bytes = encode_fast(a, 3, GetParam());
   std::string err;
   auto seq = Decoder::open_memory(bytes.data(), bytes.size(), &err);
   auto jumps = Decoder::open_memory(bytes.data(), bytes.size(), &err);

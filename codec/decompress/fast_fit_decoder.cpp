@@ -32,30 +32,6 @@ uint32_t FastChunkDecoder::fit_run() const {
 
 namespace {
 
-// Where each of `count` frames' tokens start: ops at op_begin, values at value_begin (and the
-// frame after the last at [count]).
-struct FrameTokens {
-  std::vector<size_t> op_begin, value_begin;
-};
-
-// A frame's value tokens are counted from its ops, then stepped over byte by byte (an
-// escaped value takes more than one). False when the values end first.
-bool token_starts(const std::vector<uint8_t>& ops, const std::vector<uint8_t>& values,
-                  const std::vector<uint32_t>& op_counts, uint32_t first, uint32_t count, size_t op_pos,
-                  size_t value_pos, FrameTokens* t) {
-  for (uint32_t j = 0; j <= count; ++j) {
-    t->op_begin.push_back(op_pos);
-    t->value_begin.push_back(value_pos);
-    if (j == count) break;
-    const size_t end = op_pos + op_counts[first + j];
-    int64_t r = 0;
-    for (uint64_t n = value_count(ops.data(), op_pos, end); n > 0; --n)
-      if (!read_value(values.data(), values.size(), &value_pos, &r)) return false;
-    op_pos = end;
-  }
-  return true;
-}
-
 // The Fit prediction of lanes l < L of position p (into pred) from the lanes of the
 // positions before it. Every lane is a basis value (|x| <= 2^24), so the differences fit in
 // int32 and a prediction within 2^34.

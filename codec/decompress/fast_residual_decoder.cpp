@@ -88,6 +88,17 @@ bool FastChunkDecoder::open(const uint8_t* bytes, size_t size, uint32_t V, uint3
 }
 
 
+bool FastChunkDecoder::skip_frames(uint32_t count, std::string* error) {
+  FrameTokens starts;
+  if (count > kinds_.size() - next_ ||
+      !token_starts(ops_, values_, op_counts_, next_, count, op_pos_, value_pos_, &starts))
+    return fail(error, "fast residual frames to skip have fewer values than their ops name");
+  op_pos_ = starts.op_begin[count];
+  value_pos_ = starts.value_begin[count];
+  next_ += count;
+  return true;
+}
+
 // The frame's residuals added to its base prediction in out, in vertex-id order.
 bool FastChunkDecoder::add_residuals(int32_t* out) {
   OpCursor c{ops_, op_pos_, op_pos_ + op_counts_[next_], V_};

@@ -33,6 +33,10 @@ class FastChunkDecoder {
   // set once for all of them.
   uint32_t fit_run() const;
   bool decode_fit_frames(uint32_t count, int32_t* out, std::string* error);
+  // Moves past `count` frames from next() without decoding them, their tokens stepped over
+  // (their values and checksums unchecked): a seek starts at the last frame before its
+  // target that reads no earlier frame. False when the tokens run out first.
+  bool skip_frames(uint32_t count, std::string* error);
   // Local frame next() is the one decode_frame decodes; frames go in order from 0.
   uint32_t next() const { return next_; }
   uint32_t frames() const { return uint32_t(kinds_.size()); }
