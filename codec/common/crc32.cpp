@@ -6,10 +6,11 @@
 namespace dcurve {
 namespace {
 // zlib would bring a dependency the decoder does not otherwise need; a table CRC is a few
-// lines. Eight tables (slicing-by-8) fold eight bytes per step: every residual stream
-// checksums all its decoded values, and the encoder's trials write many streams, where
-// the one-table loop was a visible share of the encode time.
-using Tables = std::array<std::array<uint32_t, 256>, 8>;
+// lines. Sixteen tables (slicing-by-16) fold sixteen bytes per step: every residual stream
+// checksums all its decoded values, where the CPU has no CRC instruction (WebAssembly) the
+// decoder's largest per-frame cost after the low-rank sums.
+constexpr size_t kSlices = 16;
+using Tables = std::array<std::array<uint32_t, 256>, kSlices>;
 
 Tables make_tables() {
   Tables t{};
@@ -19,18 +20,18 @@ Tables make_tables() {
     t[0][i] = c;
   }
   // t[k][i]: the CRC of byte i followed by k zero bytes.
-  for (size_t k = 1; k < 8; ++k)
+  for (size_t k = 1; k < kSlices; ++k)
     for (uint32_t i = 0; i < 256; ++i) t[k][i] = (t[k - 1][i] >> 8) ^ t[0][t[k - 1][i] & 0xff];
   return t;
 }
 
 uint32_t crc32c_tables(const uint8_t* p, size_t size, uint32_t c) {
   static const Tables t = make_tables();
-  for (; size >= 8; size -= 8, p += 8) {
+  for (; size >= kSlices; size -= kSlices, p += kSlices) {
     // Bytes assembled explicitly: the same on any endianness and alignment.
     const uint32_t lo = c ^ (uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24);
-    c = t[7][lo & 0xff] ^ t[6][(lo >> 8) & 0xff] ^ t[5][(lo >> 16) & 0xff] ^ t[4][lo >> 24] ^ t[3][p[4]] ^
-        t[2][p[5]] ^ t[1][p[6]] ^ t[0][p[7]];
+    c = t[15][lo & 0xff] ^ t[14][(lo >> 8) & 0xff] ^ t[13][(lo >> 16) & 0xff] ^ t[12][lo >> 24];
+    for (size_t k = 4; k < kSlices; ++k) c ^= t[kSlices - 1 - k][p[k]];
   }
   for (; size > 0; --size, ++p) c = t[0][(c ^ *p) & 0xff] ^ (c >> 8);
   return c;
@@ -59,6 +60,10 @@ uint32_t crc32c_instruction(const uint8_t* p, size_t size, uint32_t c) { return 
 bool has_crc32c_instruction() { return false; }
 #endif
 }  // namespace
+
+uint32_t crc32c_by_tables(const void* data, size_t size, uint32_t seed) {
+  return ~crc32c_tables(static_cast<const uint8_t*>(data), size, ~seed);
+}
 
 uint32_t crc32c(const void* data, size_t size, uint32_t seed) {
   const uint8_t* p = static_cast<const uint8_t*>(data);

@@ -4,6 +4,8 @@
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
+#elif defined(__wasm_simd128__)
+#include <wasm_simd128.h>
 #endif
 
 namespace dcurve {
@@ -111,30 +113,49 @@ void frame_values_narrow_plain(const LowRankModel& lr, const int16_t* c, uint32_
     tile_values_narrow(lr, c, pair_count, mean, pairs, n, begin, std::min(kTile, n - begin), out);
 }
 
+// What the vector forms of frame_values_narrow_plain share: the pairs with a non-zero
+// coefficient (the two 16-bit coefficients as one 32-bit word, low half first, as the
+// multiply-adds take them, and the pair's values) and the rounding's constants.
+struct NarrowPairs {
+  int32_t words[kMaxLowRankComponents / 2 + 1];
+  const int16_t* rows[kMaxLowRankComponents / 2 + 1];
+  uint32_t count = 0;
+  int up_shift = 0, shift = 0;
+  int32_t add = 0, sub = 0;  // acc -> ((acc + add) >> shift) - sub, tile_values_narrow's rounding
+};
+[[maybe_unused]] NarrowPairs narrow_pairs(const LowRankModel& lr, const int16_t* c, uint32_t pair_count,
+                                          const int16_t* pairs, size_t n) {
+  NarrowPairs p;
+  for (uint32_t j = 0; j < pair_count; ++j) {
+    const int32_t word = int32_t(uint32_t(uint16_t(c[2 * j])) | uint32_t(uint16_t(c[2 * j + 1])) << 16);
+    if (word == 0) continue;
+    p.words[p.count] = word;
+    p.rows[p.count++] = pairs + size_t(j) * n * 2;
+  }
+  p.up_shift = int(lr.shift - lr.mean_shift);
+  p.shift = int(lr.shift);
+  const int32_t bias = int32_t(1) << 30, half = p.shift ? int32_t(1) << (p.shift - 1) : 0;
+  p.add = half + bias;
+  p.sub = bias >> p.shift;
+  return p;
+}
+
 #if defined(__x86_64__) && defined(__GNUC__)
 // frame_values_narrow_plain with AVX2's 16-bit multiply-add (vpmaddwd: eight values of a
 // component pair per instruction), eight values at a time across all pairs in a register.
 __attribute__((target("avx2"))) void frame_values_narrow_avx2(const LowRankModel& lr, const int16_t* c,
                                                               uint32_t pair_count, const int32_t* mean,
                                                               const int16_t* pairs, size_t n, int32_t* out) {
-  int32_t words[kMaxLowRankComponents / 2 + 1];
-  uint32_t used[kMaxLowRankComponents / 2 + 1], u = 0;
-  for (uint32_t j = 0; j < pair_count; ++j) {
-    words[j] = int32_t(uint32_t(uint16_t(c[2 * j])) | uint32_t(uint16_t(c[2 * j + 1])) << 16);
-    if (words[j] != 0) used[u++] = j;
-  }
-  const int up_shift = int(lr.shift - lr.mean_shift), s = int(lr.shift);
-  const int32_t bias = int32_t(1) << 30, half = s ? int32_t(1) << (s - 1) : 0;
-  const __m256i add = _mm256_set1_epi32(half + bias), sub = _mm256_set1_epi32(bias >> s);
+  const NarrowPairs p = narrow_pairs(lr, c, pair_count, pairs, n);
+  const __m256i add = _mm256_set1_epi32(p.add), sub = _mm256_set1_epi32(p.sub);
   size_t i = 0;
   for (; i + 8 <= n; i += 8) {
-    __m256i acc = _mm256_slli_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(mean + i)), up_shift);
-    for (uint32_t k = 0; k < u; ++k) {
-      const uint32_t j = used[k];
-      const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pairs + (size_t(j) * n + i) * 2));
-      acc = _mm256_add_epi32(acc, _mm256_madd_epi16(b, _mm256_set1_epi32(words[j])));
+    __m256i acc = _mm256_slli_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(mean + i)), p.up_shift);
+    for (uint32_t k = 0; k < p.count; ++k) {
+      const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p.rows[k] + 2 * i));
+      acc = _mm256_add_epi32(acc, _mm256_madd_epi16(b, _mm256_set1_epi32(p.words[k])));
     }
-    acc = _mm256_sub_epi32(_mm256_srai_epi32(_mm256_add_epi32(acc, add), s), sub);
+    acc = _mm256_sub_epi32(_mm256_srai_epi32(_mm256_add_epi32(acc, add), p.shift), sub);
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i), acc);
   }
   if (i < n) tile_values_narrow(lr, c, pair_count, mean, pairs, n, i, n - i, out);
@@ -145,10 +166,36 @@ bool has_avx2() {
 }
 #endif
 
+#if defined(__wasm_simd128__)
+// frame_values_narrow_plain with WebAssembly's i32x4.dot_i16x8_s, the same multiply-add as
+// vpmaddwd on four values at a time.
+void frame_values_narrow_wasm(const LowRankModel& lr, const int16_t* c, uint32_t pair_count, const int32_t* mean,
+                              const int16_t* pairs, size_t n, int32_t* out) {
+  const NarrowPairs p = narrow_pairs(lr, c, pair_count, pairs, n);
+  const v128_t add = wasm_i32x4_splat(p.add), sub = wasm_i32x4_splat(p.sub);
+  v128_t coeffs[kMaxLowRankComponents / 2 + 1];
+  for (uint32_t k = 0; k < p.count; ++k) coeffs[k] = wasm_i32x4_splat(p.words[k]);
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {  // two independent sums: the adds of one do not wait on the other
+    v128_t lo = wasm_i32x4_shl(wasm_v128_load(mean + i), p.up_shift);
+    v128_t hi = wasm_i32x4_shl(wasm_v128_load(mean + i + 4), p.up_shift);
+    for (uint32_t k = 0; k < p.count; ++k) {
+      lo = wasm_i32x4_add(lo, wasm_i32x4_dot_i16x8(wasm_v128_load(p.rows[k] + 2 * i), coeffs[k]));
+      hi = wasm_i32x4_add(hi, wasm_i32x4_dot_i16x8(wasm_v128_load(p.rows[k] + 2 * i + 8), coeffs[k]));
+    }
+    wasm_v128_store(out + i, wasm_i32x4_sub(wasm_i32x4_shr(wasm_i32x4_add(lo, add), p.shift), sub));
+    wasm_v128_store(out + i + 4, wasm_i32x4_sub(wasm_i32x4_shr(wasm_i32x4_add(hi, add), p.shift), sub));
+  }
+  if (i < n) tile_values_narrow(lr, c, pair_count, mean, pairs, n, i, n - i, out);
+}
+#endif
+
 void frame_values_narrow(const LowRankModel& lr, const int16_t* c, uint32_t pair_count, const int32_t* mean,
                          const int16_t* pairs, size_t n, int32_t* out) {
 #if defined(__x86_64__) && defined(__GNUC__)
   if (has_avx2()) return frame_values_narrow_avx2(lr, c, pair_count, mean, pairs, n, out);
+#elif defined(__wasm_simd128__)
+  return frame_values_narrow_wasm(lr, c, pair_count, mean, pairs, n, out);
 #endif
   frame_values_narrow_plain(lr, c, pair_count, mean, pairs, n, out);
 }
