@@ -166,12 +166,12 @@ TEST(DecoderMemory, PlaybackStaysWithinABoundThatDoesNotGrowWithTheFrameCount) {
   expect_bounded_playback(Profile::Small, 40 * V * kChunkFrames + 256 * V + 65536, "small");
 }
 
-// Format 4 (the fast profile): the cursor holds three decoded frames, two frames of Model
-// prediction and one of 64-bit spatial corrections (84 bytes per vertex), never a chunk, so
-// the bound has no chunk term.
+// Format 4 (the fast profile): the cursor holds three decoded frames and two frames of Model
+// prediction (60 bytes per vertex; a spatial frame recomputes its corrections), never a
+// chunk, so the bound has no chunk term.
 TEST(DecoderMemory, FastPlaybackHoldsFramesNotChunksAndDoesNotGrow) {
   const size_t V = kSide * kSide;
-  expect_bounded_playback(Profile::Fast, 84 * V + 256 * V + 65536, "fast");
+  expect_bounded_playback(Profile::Fast, 60 * V + 256 * V + 65536, "fast");
 }
 
 
