@@ -176,7 +176,8 @@ Model file_base(const Animation& anim, const EncodeOptions& opt, std::string* cu
 }
 
 // The fast profile without a PDE model: grid, low-rank model and fast payload all chosen by
-// the fast coder's bytes (encoder/rate/fast_grid.h), no format 3 encode at all.
+// the fast coder's bytes (encoder/rate/fast_grid.h), no format 3 encode at all; one stage of
+// progress.
 bool encode_fast_alone(const Animation& anim, const EncodeOptions& opt, WorkMeter* meter, Model* m,
                        std::string* curve_fallback, std::string* error) {
   const Model base = file_base(anim, opt, curve_fallback);
@@ -190,8 +191,9 @@ bool encode_fast_alone(const Animation& anim, const EncodeOptions& opt, WorkMete
   const double refinement = opt.grid_refinement > 0     ? opt.grid_refinement
                             : opt.effort == kMinEffort ? kUntriedRefinement
                                                        : 0;
-  return choose_fast_grid(anim, base, max_distance, refinement,
-                          opt.effort == kMaxEffort ? GridSearch::Walk : GridSearch::Bracket, fo, m, error);
+  const GridSearch search = opt.effort == kMaxEffort ? GridSearch::Walk : GridSearch::Bracket;
+  meter->forecast({forecast_fast_grid_frames(anim, refinement > 0, search)});
+  return choose_fast_grid(anim, base, max_distance, refinement, search, fo, m, error);
 }
 
 // The model every encode starts from: faces, curves, and the grid chosen by trial encodes
@@ -348,7 +350,7 @@ std::vector<uint64_t> forecast_stages(const Animation& anim, const EncodeOptions
   else if (trial_frames < F) stages[kPlainStage] = opt.effort == kMaxEffort ? plain(F) : followed;
   // The chunk choice plans each length at --effort 3; otherwise it cuts the kept plan and
   // plans only a length that wins, which a clip too long to be one chunk always has.
-  const bool chunk_choice = opt.chunk_frames == 0 && !(fast && opt.model == ModelChoice::None);
+  const bool chunk_choice = opt.chunk_frames == 0;
   if (chunk_choice && opt.effort == kMaxEffort) {
     for (uint32_t K : kChunkCandidates)
       if (K < F) stages[kChunkStage] += residual_plan_frames(F);
@@ -469,8 +471,6 @@ bool encode_animation(const Animation& anim, const EncodeOptions& opt, std::vect
   WorkMeter meter(opt.progress);
   Model m;
   if (opt.profile == Profile::Fast && opt.model == ModelChoice::None) {
-    meter.forecast({forecast_fast_grid_frames(anim, opt.grid_refinement > 0 || opt.effort == kMinEffort,
-                                              opt.effort == kMaxEffort ? GridSearch::Walk : GridSearch::Bracket)});
     if (!encode_fast_alone(anim, opt, &meter, &m, &rep.curve_fallback, error)) return false;
   } else if (!encode_searched(anim, opt, &meter, &m, &rep, error)) {
     return false;
