@@ -239,28 +239,41 @@ void frame_from(const LowRankModel& lr, uint32_t f, const int32_t* mean, const B
 }  // namespace
 
 namespace {
-uint32_t magnitude(int32_t v) { return v < 0 ? uint32_t(-int64_t(v)) : uint32_t(v); }
+uint32_t magnitude(int64_t v) { return uint32_t(v < 0 ? -v : v); }
 }  // namespace
 
 void LowRankTables::assign(const std::vector<int32_t>& mean_and_basis, size_t n) {
   mean.assign(mean_and_basis.begin(), mean_and_basis.begin() + std::ptrdiff_t(n));
-  const auto first = mean_and_basis.begin() + std::ptrdiff_t(n);
-  const bool narrow = std::all_of(first, mean_and_basis.end(), [](int32_t v) { return v >= INT16_MIN && v <= INT16_MAX; });
+  const int32_t* basis = mean_and_basis.data() + n;
   const size_t K = n ? (mean_and_basis.size() - n) / n : 0;
-  mean_max = 0;
-  for (int32_t v : mean) mean_max = std::max(mean_max, magnitude(v));
+  int32_t lo = 0, hi = 0;
+  for (int32_t v : mean) lo = std::min(lo, v), hi = std::max(hi, v);
+  mean_max = std::max(magnitude(lo), magnitude(hi));
+  // One pass per component for its range: both the 16-bit test and the maxima of the bound.
   basis_max.assign(K, 0);
-  for (size_t k = 0; k < K; ++k)
-    for (size_t i = 0; i < n; ++i) basis_max[k] = std::max(basis_max[k], magnitude(first[std::ptrdiff_t(k * n + i)]));
+  bool narrow = true;
+  for (size_t k = 0; k < K; ++k) {
+    lo = hi = 0;
+    for (size_t i = 0; i < n; ++i) lo = std::min(lo, basis[k * n + i]), hi = std::max(hi, basis[k * n + i]);
+    basis_max[k] = std::max(magnitude(lo), magnitude(hi));
+    narrow = narrow && lo >= INT16_MIN && hi <= INT16_MAX;
+  }
   pairs16.clear();
   basis32.clear();
   if (!narrow) {
-    basis32.assign(first, mean_and_basis.end());
+    basis32.assign(basis, basis + K * n);
     return;
   }
-  pairs16.assign((K + 1) / 2 * n * 2, 0);
-  for (size_t k = 0; k < K; ++k)
-    for (size_t i = 0; i < n; ++i) pairs16[(k / 2 * n + i) * 2 + k % 2] = int16_t(first[std::ptrdiff_t(k * n + i)]);
+  pairs16.resize((K + 1) / 2 * n * 2);
+  for (size_t k = 0; k < K; k += 2) {
+    const int32_t* a = basis + k * n;
+    const int32_t* b = k + 1 < K ? a + n : nullptr;  // an odd K's last pair is padded with zeros
+    int16_t* out = pairs16.data() + k * n;
+    for (size_t i = 0; i < n; ++i) {
+      out[2 * i] = int16_t(a[i]);
+      out[2 * i + 1] = b ? int16_t(b[i]) : int16_t(0);
+    }
+  }
 }
 
 void low_rank_frame(const LowRankModel& lr, uint32_t f, const int32_t* mean_and_basis, size_t n, int32_t* out) {
