@@ -2,8 +2,9 @@
 # The runtime benchmark of the streaming decoder (decoder/README.md): encodes horse-gallop
 # (corpus-ext) and a 600-frame rope-small clip at 1e-3 with each profile (small: format 3,
 # fast: format 4), then runs build/bench/runtime_bench on the four files in one run: open,
-# open + middle frame, open + every frame, memory, beside libdraco decoding the same frames
-# and a memcpy of them. Files go to out/runtime/ and are reused.
+# open + middle frame, open + every frame, the steady frame and a seek, memory, beside
+# libdraco decoding the same frames and a memcpy of them (medians of 9 runs each). Files go to
+# out/runtime/ and are reused.
 #   scripts/runtime-bench.sh [CORPUS_EXT=../shared/corpus-ext]
 set -euo pipefail
 cd "$(dirname "$0")/.."
