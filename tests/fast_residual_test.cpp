@@ -12,6 +12,7 @@
 #include "codec/common/crc32.h"
 #include "codec/common/fast_residual.h"
 #include "codec/common/fast_traversal.h"
+#include "codec/common/residual_index.h"
 #include "codec/compress/fast_residual_encoder.h"
 #include "codec/decompress/container_reader.h"
 #include "codec/decompress/fast_residual_decoder.h"
@@ -275,6 +276,40 @@ TEST(FastResidual, DamagedFastFilesAreRefusedOrDecodeTheSame) {
     bad[i] ^= 0x5a;
     EXPECT_TRUE(refused_or_decodes_as(bad, *original)) << "byte " << i;
   }
+}
+
+// Frames a seek decodes: from the last frame at or before it that reads no earlier one, or
+// its chunk's first.
+TEST(FastResidual, SeekFramesCountFromTheLastFrameThatReadsNoEarlierOne) {
+  const uint8_t M = uint8_t(FrameKind::Model), P = uint8_t(FrameKind::Previous), D = uint8_t(FrameKind::ModelDelta);
+  EXPECT_EQ(fast_seek_frames({M, P, P, M, P}, 8), 3u);
+  EXPECT_EQ(fast_seek_frames({M, P, P, P, P, P}, 4), 4u) << "the chunk of frames 4, 5 starts a run";
+  EXPECT_EQ(fast_seek_frames({M, D, D, D, D, D, D, D}, 8), 8u);
+  EXPECT_EQ(fast_seek_frames({M, uint8_t(P | fast_residual::kSpatialFlag), M}, 8), 2u);
+}
+
+// A clip without a model, whose frames read the ones before, in chunks longer than four:
+// the planner still keeps every seek within kMaxSeekFrames.
+TEST(FastResidual, ThePlannerKeepsSeeksShort) {
+  const Animation a = waving_sheet(40);
+  const std::vector<uint8_t> bytes = encode_fast(a, 0, 16);
+  Model m;
+  std::string err;
+  ASSERT_TRUE(read_container(bytes.data(), bytes.size(), &m, &err)) << err;
+  ResidualIndex index;
+  ASSERT_TRUE(read_residual_index(m.residual.payload.data(), m.residual.payload.size(), m.meta.frame_count,
+                                  !m.faces.empty(), UINT64_MAX, &index, &err))
+      << err;
+  std::vector<uint8_t> kinds;
+  size_t reading = 0;
+  for (size_t c = 0; c < index.chunks.size(); ++c) {
+    const uint32_t count = std::min(index.chunk_frames, m.meta.frame_count - uint32_t(c) * index.chunk_frames);
+    const uint8_t* chunk = m.residual.payload.data() + index.index_bytes + index.chunks[c].offset;
+    kinds.insert(kinds.end(), chunk, chunk + count);  // a chunk starts with its kind bytes
+    for (uint32_t k = 0; k < count; ++k) reading += fast_residual::frames_needed(fast_residual::base_kind(chunk[k])) > 0;
+  }
+  EXPECT_GT(reading, kinds.size() / 2) << "the clip should be one whose frames read earlier ones";
+  EXPECT_LE(fast_seek_frames(kinds, index.chunk_frames), kMaxSeekFrames);
 }
 
 TEST(FastResidual, ChunkCandidatesKeepRandomAccessCheap) {

@@ -58,11 +58,14 @@ int64_t snap_frame(const FastInputs& in, const float* x, const std::vector<AxisR
   return bits;
 }
 
-// Kinds and grid values of one chunk's frames: per frame, the usable kind that costs least.
+// Kinds and grid values of one chunk's frames: per frame, the usable kind that costs least,
+// one that reads no earlier frame wherever a seek would otherwise decode more than
+// kMaxSeekFrames frames.
 void plan_chunk(const FastInputs& in, ChunkSpan span, uint8_t* kinds, int32_t* q) {
   const size_t n = size_t(in.V) * 3;
   std::vector<int32_t> pred(n), trial(n);
   std::vector<int64_t> corrections(n);
+  uint32_t seek = 0;  // frames a seek to the frame before decodes
   for (uint32_t k = 0; k < span.count; ++k) {
     const uint32_t f = span.first + k;
     const float* x = (*in.frames)[f].data();
@@ -72,6 +75,7 @@ void plan_chunk(const FastInputs& in, ChunkSpan span, uint8_t* kinds, int32_t* q
     int64_t best = INT64_MAX;
     for (uint8_t base = 0; base < kFrameKindCount; ++base) {
       if (!kind_usable(base, k, M != nullptr)) continue;
+      if (seek >= kMaxSeekFrames && frames_needed(FrameKind(base)) > 0) continue;
       predict_frame(FrameKind(base), k >= 1 ? out - n : nullptr, k >= 2 ? out - 2 * n : nullptr, M,
                     M && k >= 1 ? M - n : nullptr, n, pred.data());
       for (uint8_t kind : {base, uint8_t(base | kSpatialFlag), uint8_t(base | kSpatialFlag | kSmoothFlag)}) {
@@ -83,20 +87,23 @@ void plan_chunk(const FastInputs& in, ChunkSpan span, uint8_t* kinds, int32_t* q
         }
       }
     }
+    seek = frames_needed(base_kind(kinds[k])) > 0 ? seek + 1 : 1;
   }
 }
 
-// The payload of chunk length K, planned chunk by chunk on `threads` threads.
-std::vector<uint8_t> plan_and_encode(const Model& m, const FastInputs& in, uint32_t K, int threads) {
+// The payload of chunk length K, planned chunk by chunk on `threads` threads; *kinds the
+// frames' kind bytes.
+std::vector<uint8_t> plan_and_encode(const Model& m, const FastInputs& in, uint32_t K, int threads,
+                                     std::vector<uint8_t>* kinds) {
   const uint32_t F = m.meta.frame_count;
   const size_t n = size_t(in.V) * 3;
   std::vector<int32_t> q(n * F);
-  std::vector<uint8_t> kinds(F);
+  kinds->assign(F, 0);
   parallel_for(chunk_count(F, K), threads, [&](size_t c) {
     const ChunkSpan span = chunk_span(F, K, uint32_t(c));
-    plan_chunk(in, span, kinds.data() + span.first, q.data() + n * span.first);
+    plan_chunk(in, span, kinds->data() + span.first, q.data() + n * span.first);
   });
-  return encode_fast_residuals(m, q, kinds, K, in.model);
+  return encode_fast_residuals(m, q, *kinds, K, in.model);
 }
 }  // namespace
 
@@ -107,6 +114,16 @@ std::vector<uint32_t> fast_chunk_candidates(uint32_t F) {
   if (out.empty() || F <= 4) out = {F};
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
+}
+
+uint32_t fast_seek_frames(const std::vector<uint8_t>& kinds, uint32_t K) {
+  uint32_t most = 0, run = 0;
+  for (size_t f = 0; f < kinds.size(); ++f) {
+    const bool starts = f % K == 0 || frames_needed(base_kind(kinds[f])) == 0;
+    run = starts ? 1 : run + 1;
+    most = std::max(most, run);
+  }
+  return most;
 }
 
 bool encode_fast_layer(Model* m, const std::vector<std::vector<float>>& frames, const FastLayerOptions& options,
@@ -124,12 +141,13 @@ bool encode_fast_layer(Model* m, const std::vector<std::vector<float>>& frames, 
   const std::vector<uint32_t> lengths =
       options.chunk_frames ? std::vector<uint32_t>{std::min(options.chunk_frames, m->meta.frame_count)}
                            : fast_chunk_candidates(m->meta.frame_count);
-  std::vector<uint8_t> best;
+  std::vector<uint8_t> best, kinds;
   uint32_t best_K = 0;
   for (uint32_t K : lengths) {
-    std::vector<uint8_t> payload = plan_and_encode(*m, in, K, options.threads);
+    std::vector<uint8_t> payload = plan_and_encode(*m, in, K, options.threads, &kinds);
     if (payload.empty()) return fail(error, "internal error: the fast residual plan is invalid");
-    // A longer chunk costs random access; it has to save more than 1 % to win.
+    if (fast_seek_frames(kinds, K) > kMaxSeekFrames) return fail(error, "internal error: a fast plan's seek is too long");
+    // A longer chunk costs a seek more stream to read; it has to save more than 1 % to win.
     if (best.empty() || double(payload.size()) < 0.99 * double(best.size())) {
       best.swap(payload);
       best_K = K;

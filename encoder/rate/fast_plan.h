@@ -30,8 +30,16 @@ struct FastLayerOptions {
 bool encode_fast_layer(Model* m, const std::vector<std::vector<float>>& frames, const FastLayerOptions& options,
                        std::string* error, const std::vector<int32_t>* prediction = nullptr);
 
-// The chunk lengths the encoder considers for F frames: short enough that one frame costs at
-// most about a tenth of the clip to reach, and at least 4.
+// A seek (a fresh cursor, any frame) decodes at most this many frames: the decoder starts at
+// the last frame at or before it that reads no earlier one (Model or None, and every chunk's
+// first frame), and the planner picks such a kind wherever a seek would otherwise decode more.
+constexpr uint32_t kMaxSeekFrames = 4;
+
+// The chunk lengths the encoder considers for F frames: 4, 8, ... up to a tenth of the clip
+// (at least 4, at most 64), so a seek reads at most about a tenth of the clip's streams.
 std::vector<uint32_t> fast_chunk_candidates(uint32_t F);
+
+// The most frames a seek decodes into F frames of these kinds in chunks of K.
+uint32_t fast_seek_frames(const std::vector<uint8_t>& kinds, uint32_t K);
 
 }  // namespace dcurve
