@@ -113,30 +113,40 @@ class CountSearch {
   uint32_t best_count_ = 0;
 };
 
-// The counts of kCounts below the most the frames have, then that most: every other one,
-// the last always, then the two beside the best.
-bool search_counts(CountSearch* search, std::string* error) {
-  std::vector<uint32_t> ladder;
-  for (uint32_t K : kCounts)
-    if (K < search->max_count()) ladder.push_back(K);
-  ladder.push_back(search->max_count());
-  std::vector<uint8_t> tried(ladder.size(), 0);
-  bool smaller = false, coded = true;
-  size_t best = 0;
-  auto run = [&](size_t i) {
-    if (i >= ladder.size() || tried[i] || !coded) return true;
-    tried[i] = 1;
-    if (!search->try_count(ladder[i], kBasisStep, &smaller, &coded, error)) return false;
-    if (smaller) best = i;
+// The counts of kCounts below the most the frames have, then that most, tried by slot: every
+// other one, the last, then the two beside the best.
+class CountLadder {
+ public:
+  explicit CountLadder(uint32_t most) {
+    for (uint32_t K : kCounts)
+      if (K < most) counts_.push_back(K);
+    counts_.push_back(most);
+    tried_.assign(counts_.size(), 0);
+  }
+  bool search(CountSearch* trials, std::string* error) {
+    for (size_t i = 0; i < counts_.size(); i += 2)
+      if (!run(i, trials, error)) return false;
+    if (!run(counts_.size() - 1, trials, error)) return false;
+    const size_t centre = best_;
+    coded_ = true;  // a count past the format's ranges stops the larger ones only
+    return (centre == 0 || run(centre - 1, trials, error)) && run(centre + 1, trials, error);
+  }
+
+ private:
+  // Slot i's count, unless tried already or past a count the format could not hold.
+  bool run(size_t i, CountSearch* trials, std::string* error) {
+    if (i >= counts_.size() || tried_[i] || !coded_) return true;
+    tried_[i] = 1;
+    bool smaller = false;
+    if (!trials->try_count(counts_[i], kBasisStep, &smaller, &coded_, error)) return false;
+    if (smaller) best_ = i;
     return true;
-  };
-  for (size_t i = 0; i < ladder.size(); i += 2)
-    if (!run(i)) return false;
-  if (!run(ladder.size() - 1)) return false;
-  const size_t centre = best;
-  coded = true;  // a count past the format's ranges stops the larger ones only
-  return (centre == 0 || run(centre - 1)) && run(centre + 1);
-}
+  }
+  std::vector<uint32_t> counts_;
+  std::vector<uint8_t> tried_;
+  size_t best_ = 0;
+  bool coded_ = true;
+};
 }  // namespace
 
 bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frames, const std::vector<int32_t>& rounded,
@@ -146,11 +156,13 @@ bool choose_fast_low_rank(Model* m, const std::vector<std::vector<float>>& frame
   CountSearch search(base, frames, rounded, options);
   bool smaller = false, coded = true;
   if (options.components < 0) {
-    if (!search_counts(&search, error)) return false;
-  } else if (!search.try_count(std::min<uint32_t>(uint32_t(options.components), search.max_count()), kBasisStep,
-                               &smaller, &coded, error) ||
-             (!coded && !search.try_count(0, kBasisStep, &smaller, &coded, error))) {
-    return false;  // a count the format cannot hold gives the file without a model
+    CountLadder ladder(search.max_count());
+    if (!ladder.search(&search, error)) return false;
+  } else {
+    const uint32_t K = std::min<uint32_t>(uint32_t(options.components), search.max_count());
+    if (!search.try_count(K, kBasisStep, &smaller, &coded, error)) return false;
+    // A count the format cannot hold gives the file without a model.
+    if (!coded && !search.try_count(0, kBasisStep, &smaller, &coded, error)) return false;
   }
   if (search.best_bytes() == SIZE_MAX) return fail(error, "internal error: no low-rank trial could be coded");
   const uint32_t K = search.best_count();
