@@ -161,11 +161,13 @@ const int32_t* ChunkWindow::fast_frame_values(uint32_t f, Error* error) {
   if ((c != fast_chunk_ || fast_.next() > local) && !open_fast_chunk(c, error)) return nullptr;
   uint32_t start = local;
   while (start > fast_.next() && fast_residual::frames_needed(fast_.kind(start)) > 0) --start;
-  std::string why;
-  if (start > fast_.next() && !fast_.skip_frames(start - fast_.next(), &why)) {
-    fast_chunk_ = UINT32_MAX;
-    if (error) *error = {Status::CorruptChunk, "chunk " + std::to_string(c) + ": " + why};
-    return nullptr;
+  if (start > fast_.next()) {
+    std::string why;
+    if (!fast_.skip_frames(start - fast_.next(), &why)) {
+      fast_chunk_ = UINT32_MAX;
+      if (error) *error = {Status::CorruptChunk, "chunk " + std::to_string(c) + ": " + why};
+      return nullptr;
+    }
   }
   while (fast_.next() <= local)
     if (!decode_fast_frame(error)) return nullptr;

@@ -6,6 +6,8 @@
 #include <array>
 #include <filesystem>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "codec/common/container_format.h"
 #include "codec/common/crc32.h"
@@ -18,6 +20,7 @@
 #include "container_bytes.h"
 #include "encoder/io/frames.h"
 #include "test_models.h"
+#include "test_util.h"
 
 namespace dcurve {
 namespace {
@@ -52,8 +55,8 @@ std::vector<std::array<uint32_t, 3>> canonical_triangles(const std::vector<uint3
 }
 
 TEST(FacesCodec, RoundTripsCorpusMeshesExactly) {
+  if (!test::have_corpus_ext()) GTEST_SKIP() << "corpus-ext not found at " << DCURVE_CORPUS_EXT;
   const std::filesystem::path corpus = DCURVE_CORPUS_EXT;
-  if (!std::filesystem::exists(corpus)) GTEST_SKIP() << "corpus-ext not found at " << corpus;
   for (const char* seq : {"horse-gallop", "chicken-crossing", "elastic-cow", "cloth-sphere", "crane"}) {
     std::vector<float> xyz;
     std::vector<uint32_t> faces;

@@ -89,13 +89,10 @@ bool FastChunkDecoder::open(const uint8_t* bytes, size_t size, uint32_t V, uint3
 
 
 bool FastChunkDecoder::skip_frames(uint32_t count, std::string* error) {
-  FrameTokens starts;
-  if (count > kinds_.size() - next_ ||
-      !token_starts(ops_, values_, op_counts_, next_, count, op_pos_, value_pos_, &starts))
-    return fail(error, "fast residual frames to skip have fewer values than their ops name");
-  op_pos_ = starts.op_begin[count];
-  value_pos_ = starts.value_begin[count];
-  next_ += count;
+  if (count > kinds_.size() - next_) return fail(error, "fast residual chunk has fewer frames to skip");
+  for (; count > 0; --count, ++next_)
+    if (!skip_frame_tokens(ops_, values_, op_counts_[next_], &op_pos_, &value_pos_))
+      return fail(error, "fast residual frames to skip have fewer values than their ops name");
   return true;
 }
 

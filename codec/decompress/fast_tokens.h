@@ -69,26 +69,34 @@ inline uint64_t value_count(const uint8_t* ops, size_t begin, size_t end) {
   return n;
 }
 
+// Past one frame's tokens: its `op_count` op bytes at *op_pos, and the value tokens they call
+// for at *value_pos, stepped over byte by byte (an escaped value takes more than one). False
+// when the values end first.
+inline bool skip_frame_tokens(const std::vector<uint8_t>& ops, const std::vector<uint8_t>& values, uint32_t op_count,
+                              size_t* op_pos, size_t* value_pos) {
+  const size_t end = *op_pos + op_count;
+  int64_t r = 0;
+  for (uint64_t n = value_count(ops.data(), *op_pos, end); n > 0; --n)
+    if (!read_value(values.data(), values.size(), value_pos, &r)) return false;
+  *op_pos = end;
+  return true;
+}
+
 // Where each of `count` frames' tokens start: ops at op_begin, values at value_begin (and the
 // frame after the last at [count]).
 struct FrameTokens {
   std::vector<size_t> op_begin, value_begin;
 };
 
-// A frame's value tokens are counted from its ops, then stepped over byte by byte (an
-// escaped value takes more than one). False when the values end first.
+// FrameTokens of frames first .. first + count - 1, their tokens starting at op_pos and
+// value_pos. False when the values end first.
 inline bool token_starts(const std::vector<uint8_t>& ops, const std::vector<uint8_t>& values,
                          const std::vector<uint32_t>& op_counts, uint32_t first, uint32_t count, size_t op_pos,
                          size_t value_pos, FrameTokens* t) {
   for (uint32_t j = 0; j <= count; ++j) {
     t->op_begin.push_back(op_pos);
     t->value_begin.push_back(value_pos);
-    if (j == count) break;
-    const size_t end = op_pos + op_counts[first + j];
-    int64_t r = 0;
-    for (uint64_t n = value_count(ops.data(), op_pos, end); n > 0; --n)
-      if (!read_value(values.data(), values.size(), &value_pos, &r)) return false;
-    op_pos = end;
+    if (j < count && !skip_frame_tokens(ops, values, op_counts[first + j], &op_pos, &value_pos)) return false;
   }
   return true;
 }

@@ -13,7 +13,7 @@ namespace {
 constexpr uint64_t kForecastCountTrials = 10;
 
 // *out = base on `grid` with the low-rank model and fast payload choose_fast_low_rank keeps
-// for `anim` (whose frames base's metadata counts); *bytes its whole file.
+// for `anim` (whose frames base's metadata counts); *bytes (may be null) its whole file.
 bool fast_model_on(const Animation& anim, const Model& base, const ResidualLayer& grid,
                    const FastLayerOptions& options, Model* out, size_t* bytes, std::string* error) {
   *out = base;
@@ -27,8 +27,7 @@ bool fast_model_on(const Animation& anim, const Model& base, const ResidualLayer
 
 bool choose_fast_grid(const Animation& anim, const Model& base, double max_distance, double refinement,
                       GridSearch search, const FastLayerOptions& options, Model* out, std::string* error) {
-  size_t bytes = 0;
-  if (refinement > 0) return fast_model_on(anim, base, make_grid(anim, max_distance, refinement), options, out, &bytes, error);
+  if (refinement > 0) return fast_model_on(anim, base, make_grid(anim, max_distance, refinement), options, out, nullptr, error);
   std::vector<Model> trials(kGridTrialSlots);
   const GridChoice choice = choose_grid(
       anim, max_distance, options.threads,
@@ -43,7 +42,7 @@ bool choose_fast_grid(const Animation& anim, const Model& base, double max_dista
     *out = std::move(trials[choice.slot]);
     return true;
   }
-  return fast_model_on(anim, base, choice.grid, options, out, &bytes, error);
+  return fast_model_on(anim, base, choice.grid, options, out, nullptr, error);
 }
 
 uint64_t forecast_fast_grid_frames(const Animation& anim, bool fixed_grid, GridSearch search) {
