@@ -137,7 +137,7 @@ std::set<uint32_t> geometry_frames(const PredictorPlan& plan) {
   return out;
 }
 
-// A table per frame when asked for; tried (--effort 3), it is kept only when it codes the
+// A table per frame when asked for; tried (--effort 2 and 3), it is kept only when it codes the
 // chunk smaller than one table by more than kPerFrameGeometryGain.
 TEST(ChunkCut, PerFrameGeometryIsAskedForOrMustPay) {
   const GridClip clip = grid_clip("sheet", 24);
@@ -159,6 +159,25 @@ TEST(ChunkCut, PerFrameGeometryIsAskedForOrMustPay) {
   EXPECT_GT(geometry_frames(per_frame).size(), 2u);
   if (geometry_frames(tried).size() > 1) EXPECT_LT(double(tried_bytes), double(one_bytes) * (1 - kPerFrameGeometryGain));
   else EXPECT_EQ(tried_bytes, one_bytes);
+}
+
+// A plan narrowed to the one that won keeps its geometry rule and tries no other: an encode
+// that follows a trial of part of the clip plans the rule the trial kept.
+TEST(ChunkCut, NarrowedOptionsKeepTheWinnersGeometryRule) {
+  const GridClip clip = grid_clip("sheet", 24);
+  ASSERT_FALSE(clip.q.empty());
+  ResidualPlanOptions tries;
+  tries.try_geometry_per_frame = true;
+  for (bool per_frame : {false, true}) {
+    ResidualPlanOptions po;
+    po.geometry_per_frame = per_frame;
+    std::vector<int32_t> q = clip.q;
+    const PredictorPlan won = choose_plan_and_grid(clip.model, clip.anim.frames, clip.max_distance, &q, {}, po);
+    ASSERT_EQ(geometry_per_frame(won), per_frame);
+    const ResidualPlanOptions narrow = narrow_to_plan(tries, won);
+    EXPECT_EQ(narrow.geometry_per_frame, per_frame);
+    EXPECT_FALSE(narrow.try_geometry_per_frame);
+  }
 }
 
 }  // namespace

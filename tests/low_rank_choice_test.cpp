@@ -11,6 +11,7 @@
 #include "encoder/metrics.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/low_rank_choice.h"
+#include "encoder/rate/residual_plan.h"
 #include "test_util.h"
 
 namespace dcurve {
@@ -124,6 +125,47 @@ TEST(LowRankChoice, FollowingTheKeptModelGivesTheSameFileWithoutScreening) {
   EXPECT_EQ(none.kept.components, 0u);
   EXPECT_EQ(none.bytes, none.bytes_without);
   EXPECT_EQ(write_container(without, {}), write_container(p.model, {}));
+}
+
+// Whether any chunk of `plan` names more than one geometry frame (a weight table per frame).
+bool plans_tables_per_frame(const ResidualPlan& plan) {
+  for (const PredictorPlan& chunk : plan.chunks)
+    if (geometry_per_frame(chunk)) return true;
+  return false;
+}
+
+// The full trials plan with the encode's geometry rule (a Fit weight table per frame or one
+// per chunk), and a followed pick with the rule its own trial kept.
+TEST(LowRankChoice, TrialsPlanWithTheEncodesGeometryRule) {
+  const Animation anim = test::simulate_builtin("sheet", 12);  // Fit pays on its smooth cloth
+  const PlainEncode p = plain_encode(anim, 1e-3);
+  std::string err;
+  bool per_frame_kept[2] = {};
+  for (bool per_frame : {false, true}) {
+    EncodeContext context(anim.frames, p.rounded);
+    context.snap_distance = p.snap;
+    context.plan.geometry_per_frame = per_frame;
+    LowRankChoiceOptions two;
+    two.components = 2;  // one trial, no screening
+    LowRankChoiceReport rep;
+    Model m = p.model;
+    CodedResidual kept;
+    ASSERT_TRUE(choose_low_rank(&m, {p.plan, p.coded}, context, two, &rep, &err, &kept)) << err;
+    ASSERT_GT(rep.kept.components, 0u);
+    EXPECT_EQ(plans_tables_per_frame(kept.resi.plan), per_frame);
+    EXPECT_EQ(rep.kept.geometry_per_frame, per_frame);
+    per_frame_kept[per_frame] = rep.kept.geometry_per_frame;
+    // Followed under the other rule, the pick's own rule is planned.
+    context.plan.geometry_per_frame = !per_frame;
+    LowRankChoiceOptions follow;
+    follow.follow = &rep.kept;
+    LowRankChoiceReport followed;
+    Model again = p.model;
+    CodedResidual followed_kept;
+    ASSERT_TRUE(choose_low_rank(&again, {p.plan, p.coded}, context, follow, &followed, &err, &followed_kept)) << err;
+    EXPECT_EQ(plans_tables_per_frame(followed_kept.resi.plan), per_frame);
+  }
+  EXPECT_TRUE(per_frame_kept[1]);
 }
 
 }  // namespace

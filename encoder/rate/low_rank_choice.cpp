@@ -142,6 +142,12 @@ FrameSample sample_frames(const Model& model, const std::vector<std::vector<floa
   return s;
 }
 
+// Whether any chunk of `plan` was planned with a Fit weight table per frame.
+bool any_geometry_per_frame(const ResidualPlan& plan) {
+  return std::any_of(plan.chunks.begin(), plan.chunks.end(),
+                     [](const PredictorPlan& chunk) { return geometry_per_frame(chunk); });
+}
+
 // Residual plan and payload of `trial` with its low-rank prediction, coded->prediction (full
 // trial): a whole plan, per-cluster stage included, for each coding order of plan_options,
 // the smallest payload kept (the first among equals), and its plan and values in *coded.
@@ -185,7 +191,8 @@ class LowRankSearch {
                 const LowRankChoiceOptions& options, std::string* error)
       : model_(model), planned_(planned), frames_(context.frames), rounded_(context.rounded),
         snap_(context.snap_distance), write_options_(context.write), threads_(context.plan.threads),
-        meter_(context.plan.meter),
+        meter_(context.plan.meter), geometry_per_frame_(context.plan.geometry_per_frame),
+        try_geometry_per_frame_(context.plan.try_geometry_per_frame),
         shared_(context.shared), options_(options), error_(error),
         F_(model->meta.frame_count), n_(size_t(model->meta.vertex_count) * 3), forced_(options.components > 0) {}
 
@@ -224,6 +231,8 @@ class LowRankSearch {
   const WriteOptions& write_options_;
   const int threads_;  // 0: all cores; the result never depends on it
   WorkMeter* const meter_;  // may be null
+  // The geometry-frame rule the full trials plan with: the encode's, or a followed pick's.
+  bool geometry_per_frame_, try_geometry_per_frame_;
   ResidualOptions shared_;  // one traversal and the encode's weight tables for every walk
   const LowRankChoiceOptions& options_;
   std::string* error_;
@@ -538,6 +547,8 @@ bool LowRankSearch::worth_a_trial(const Candidate& c) const {
 // the order chosen without one are tried.
 bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* bytes) {
   ResidualPlanOptions trial_plan;
+  trial_plan.geometry_per_frame = geometry_per_frame_;
+  trial_plan.try_geometry_per_frame = try_geometry_per_frame_;
   trial_plan.gop_sizes = {1};
   trial_plan.threads = threads_;
   trial_plan.meter = meter_;
@@ -558,7 +569,8 @@ bool LowRankSearch::run_trial(const Candidate& c, bool from_rescue, uint64_t* by
     best_bytes_ = *bytes;
     best_model_ = std::move(trial);
     best_coded_ = std::move(coded);
-    rep_.kept = {c.model.components, c.pca->anchor, !c.pca->poses.empty(), c.basis_step};
+    rep_.kept = {c.model.components, c.pca->anchor, !c.pca->poses.empty(), c.basis_step,
+                 any_geometry_per_frame(best_coded_.resi.plan)};
     rep_.rescued = from_rescue;
   }
   return true;
@@ -636,6 +648,8 @@ bool LowRankSearch::follow(const LowRankPick& pick) {
   c.model = std::move(trial.low_rank);
   c.pca = &pcas_[0];
   c.basis_step = pick.basis_step;
+  geometry_per_frame_ = pick.geometry_per_frame;  // the trial's rule, as its other choices
+  try_geometry_per_frame_ = false;
   best_bytes_ = rep_.bytes_without;
   uint64_t bytes = 0;
   return run_trial(c, false, &bytes);

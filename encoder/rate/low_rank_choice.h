@@ -23,6 +23,7 @@ struct LowRankPick {
   uint32_t anchor = kMeanAnchor;    // GridComponents::anchor: the frame average or a frame
   bool posed = false;               // the anchor carried into a common pose
   double basis_step = 0;            // grid units
+  bool geometry_per_frame = false;  // its trial's plan kept a Fit weight table per frame
 };
 
 struct LowRankChoiceOptions {

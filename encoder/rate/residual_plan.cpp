@@ -492,6 +492,8 @@ ResidualPlanOptions narrow_to_plan(const ResidualPlanOptions& po, const Predicto
       narrow.cluster_layouts = {layout};
       break;
     }
+  narrow.geometry_per_frame = po.geometry_per_frame || geometry_per_frame(won);
+  narrow.try_geometry_per_frame = false;
   return narrow;
 }
 
@@ -553,14 +555,21 @@ PlanTrial smallest_trial(const Model& model, const Traversal& trav, const std::v
   return best;
 }
 
-bool names_geometry(const PredictorPlan& plan) {
+// The distinct geometry frames `plan` names, up to `most` of them.
+std::vector<uint32_t> geometry_frames(const PredictorPlan& plan, size_t most) {
+  std::vector<uint32_t> out;
   for (const FramePredictors& fp : plan.frames)
     for (const auto& candidate : fp.candidates)
-      for (const PredictorChoice& c : candidate)
-        if (uses_geometry(c.spatial)) return true;
-  return false;
+      for (const PredictorChoice& c : candidate) {
+        if (!uses_geometry(c.spatial) || std::find(out.begin(), out.end(), c.g) != out.end()) continue;
+        out.push_back(c.g);
+        if (out.size() >= most) return out;
+      }
+  return out;
 }
 }  // namespace
+
+bool geometry_per_frame(const PredictorPlan& plan) { return geometry_frames(plan, 2).size() > 1; }
 
 PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::vector<float>>& frames,
                                    double max_distance, std::vector<int32_t>* q, const ResidualOptions& caller_options,
@@ -572,7 +581,7 @@ PredictorPlan choose_plan_and_grid(const Model& model, const std::vector<std::ve
   const double radius = plan_radius(max_distance);
   PlanTrial best = smallest_trial(model, trav, frames, radius, *q, options, po);
   // A table per frame, on the order and layout that won: kept only where it pays.
-  if (po.try_geometry_per_frame && !po.geometry_per_frame && names_geometry(best.plan)) {
+  if (po.try_geometry_per_frame && !po.geometry_per_frame && !geometry_frames(best.plan, 1).empty()) {
     ResidualPlanOptions per_frame = narrow_to_plan(po, best.plan);
     per_frame.geometry_per_frame = true;
     PlanTrial tables = smallest_trial(model, trav, frames, radius, *q, options, per_frame);

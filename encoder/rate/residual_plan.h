@@ -49,7 +49,8 @@ struct ResidualPlanOptions {
   // chunk; true the reference pose or the nearest decoded frame, a table per frame.
   bool geometry_per_frame = false;
   // With geometry_per_frame false, choose_plan_and_grid also plans its winning order and
-  // layout with a table per frame, and keeps that plan past kPerFrameGeometryGain (--effort 3).
+  // layout with a table per frame, and keeps that plan past kPerFrameGeometryGain (--effort 2
+  // and 3: a clip that deforms far from its chunk's first frame needs tables of its own poses).
   bool try_geometry_per_frame = false;
   // Threads for the independent trials (coding orders, cluster layouts); 0 = all cores.
   // The result never depends on it.
@@ -96,9 +97,13 @@ ResidualPlan choose_chunked_plan(const Model& model, const std::vector<std::vect
                                  const ResidualPlanOptions& plan_options = {});
 
 // `po` narrowed to what `won` (a plan choose_plan_and_grid made with `po`) chose: its coding
-// order's gop size, and its cluster layout or none when the one-cluster plan won. Planning
-// with the result tries one order and at most one layout.
+// order's gop size, its cluster layout or none when the one-cluster plan won, and its
+// geometry rule (a table per frame or per chunk, no longer tried). Planning with the result
+// tries one order, at most one layout and one geometry rule.
 ResidualPlanOptions narrow_to_plan(const ResidualPlanOptions& po, const PredictorPlan& won);
+
+// Whether `plan` names more than one geometry frame: planned with a table per frame.
+bool geometry_per_frame(const PredictorPlan& plan);
 
 // Per frame, the grid values of each input coordinate that choose_plan_and_grid may snap it
 // to (plan_steps.h), as it computes them for these arguments; on up to `threads` threads
