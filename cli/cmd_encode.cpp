@@ -93,10 +93,10 @@ Action add_encode(CLI::App& app) {
       ->check(CLI::IsMember({"auto"}) | finite_range(1.0, 16.0))
       ->capture_default_str();
   app.add_option("--effort", o->effort,
-                 "Search effort with --grid auto: 2 tries two grids side by side and a Fit weight table per "
-                 "frame where it shrinks a chunk by 2 % (a slower decode), 1 encodes once on a grid 6x finer "
-                 "than the coarsest with one table per chunk, 3 walks the grids by trial encodes (about four "
-                 "encodes). Lower is faster, higher finds the last percent")
+                 "Search effort with --grid auto: 2 tries two grids side by side, 1 encodes once on a grid 6x "
+                 "finer than the coarsest, 3 walks the grids by trial encodes (about four encodes) and tries "
+                 "a Fit weight table per frame where it shrinks a chunk by 2 % (a slower decode). Lower is "
+                 "faster, higher finds the last percent")
       ->check(CLI::Range(kMinEffort, kMaxEffort))
       ->capture_default_str();
   app.add_option("--profile", o->profile,

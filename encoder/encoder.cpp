@@ -107,7 +107,7 @@ EncodeContext context_of(const Animation& anim, const EncodeOptions& opt, const 
   c.shared.traversal = start.traversal.get();
   c.plan.threads = opt.threads;
   c.plan.meter = start.meter;
-  c.plan.try_geometry_per_frame = opt.effort >= kDefaultEffort;
+  c.plan.try_geometry_per_frame = opt.effort == kMaxEffort;
   c.write.connectivity = opt.connectivity;
   return c;
 }

@@ -73,7 +73,9 @@ TEST(ChunkCut, CutPlansAreValidAndCodeTheSameValues) {
               ++kept;
               EXPECT_EQ(after.kind, before.kind);
               EXPECT_EQ(after.spatial, before.spatial);
-              if (has_reference(before.kind)) EXPECT_EQ(after.r0 + span.first, before.r0);
+              if (has_reference(before.kind)) {
+                EXPECT_EQ(after.r0 + span.first, before.r0);
+              }
             } else {
               ++replaced;
               EXPECT_TRUE(after.kind == before.kind || after.kind == PredictorKind::None) << "frame " << f;
@@ -81,7 +83,9 @@ TEST(ChunkCut, CutPlansAreValidAndCodeTheSameValues) {
           }
     }
     EXPECT_GT(kept, 0u);
-    if (K < F) EXPECT_GT(replaced, 0u);  // a chunk's first frame had a reference before it
+    if (K < F) {
+      EXPECT_GT(replaced, 0u);  // a chunk's first frame had a reference before it
+    }
     Model chunked = m;
     chunked.residual.chunk_frames = K;
     chunked.residual.payload = encode_residuals(chunked, q, cut, {});

@@ -648,8 +648,10 @@ bool LowRankSearch::follow(const LowRankPick& pick) {
   c.model = std::move(trial.low_rank);
   c.pca = &pcas_[0];
   c.basis_step = pick.basis_step;
-  geometry_per_frame_ = pick.geometry_per_frame;  // the trial's rule, as its other choices
-  try_geometry_per_frame_ = false;
+  // The trial's rule, as its other choices; a one-table pick may still try tables per frame
+  // where the encode does.
+  geometry_per_frame_ = pick.geometry_per_frame;
+  try_geometry_per_frame_ = try_geometry_per_frame_ && !pick.geometry_per_frame;
   best_bytes_ = rep_.bytes_without;
   uint64_t bytes = 0;
   return run_trial(c, false, &bytes);

@@ -49,8 +49,9 @@ struct ResidualPlanOptions {
   // chunk; true the reference pose or the nearest decoded frame, a table per frame.
   bool geometry_per_frame = false;
   // With geometry_per_frame false, choose_plan_and_grid also plans its winning order and
-  // layout with a table per frame, and keeps that plan past kPerFrameGeometryGain (--effort 2
-  // and 3: a clip that deforms far from its chunk's first frame needs tables of its own poses).
+  // layout with a table per frame, and keeps that plan past kPerFrameGeometryGain (--effort 3:
+  // a clip that deforms far from its chunk's first frame needs tables of its own poses; the
+  // default keeps one table, which decodes about twice as fast).
   bool try_geometry_per_frame = false;
   // Threads for the independent trials (coding orders, cluster layouts); 0 = all cores.
   // The result never depends on it.
