@@ -16,10 +16,23 @@ inline size_t thread_count(int threads) {
   return threads > 0 ? size_t(threads) : size_t(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-// Threads each of `jobs` side-by-side jobs may use when they share `threads` (as above): an
-// equal share, at least one.
-inline int threads_per_job(int threads, size_t jobs) {
-  return int(std::max<size_t>(1, thread_count(threads) / std::max<size_t>(jobs, 1)));
+// Hardware threads of this process not running a parallel_for job: a nested parallel_for
+// takes its helpers from them, so a job whose side-by-side siblings have ended gets their
+// cores for its own inner loops, without more threads than cores. May dip below zero for a
+// moment while a caller takes its core back.
+inline std::atomic<int>& idle_cores() {
+  static std::atomic<int> idle{int(std::max(1u, std::thread::hardware_concurrency())) - 1};
+  return idle;
+}
+
+// Takes up to `wanted` idle cores; returns how many it took.
+inline size_t take_idle_cores(size_t wanted) {
+  int have = idle_cores().load();
+  while (wanted > 0 && have > 0) {
+    const int take = int(std::min<size_t>(size_t(have), wanted));
+    if (idle_cores().compare_exchange_weak(have, have - take)) return size_t(take);
+  }
+  return 0;
 }
 
 // The first exception any worker threw; the others stop taking jobs once there is one.
@@ -42,7 +55,8 @@ class FirstException {
 };
 
 // Calls job(i) once for every i in [0, count), on up to `threads` threads (0: all hardware
-// threads; the calling thread is one of them). Returns when every job has finished. An
+// threads; the calling thread is one of them), as many as idle cores allow; a thread hands
+// its core back as soon as no job is left for it. Returns when every job has finished. An
 // exception from a job (std::bad_alloc included) ends the loop and is rethrown here, on the
 // calling thread, once every thread has stopped: it never escapes a thread into
 // std::terminate.
@@ -50,22 +64,25 @@ template <class Job>
 void parallel_for(size_t count, int threads, Job job) {
   std::atomic<size_t> next{0};
   FirstException thrown;
-  auto worker = [&]() {
+  auto work = [&]() {
     try {
       for (size_t i = next++; i < count && !thrown.failed(); i = next++) job(i);
     } catch (...) {
       thrown.record(std::current_exception());
     }
+    ++idle_cores();
   };
-  const size_t n = std::min(thread_count(threads), std::max<size_t>(count, 1));
+  const size_t helpers = take_idle_cores(std::min(thread_count(threads), std::max<size_t>(count, 1)) - 1);
   std::vector<std::thread> pool;
   try {
-    for (size_t k = 1; k < n; ++k) pool.emplace_back(worker);
+    for (size_t k = 0; k < helpers; ++k) pool.emplace_back(work);
   } catch (...) {  // a thread that cannot start (std::system_error) fails the loop like a job
     thrown.record(std::current_exception());
   }
-  worker();
+  idle_cores() += int(helpers - pool.size());  // the cores of threads that did not start
+  work();  // the calling thread's core is idle from here until the joins
   for (std::thread& t : pool) t.join();
+  --idle_cores();
   thrown.rethrow();
 }
 

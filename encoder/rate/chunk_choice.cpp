@@ -34,14 +34,13 @@ struct LengthTrial {
   std::string error;
 };
 
-// t->model's residual layer coded with chunks of t->K frames, planned again with `plan`.
-bool plan_length(LengthTrial* t, const EncodeContext& context, const std::vector<int32_t>* prediction,
-                 const ResidualPlanOptions& plan) {
+// t->model's residual layer coded with chunks of t->K frames, planned again.
+bool plan_length(LengthTrial* t, const EncodeContext& context, const std::vector<int32_t>* prediction) {
   t->model.residual.chunk_frames = t->K;
   ResidualOptions ro = context.shared;
   ro.model_prediction = prediction;
   t->coded.resi.values = context.rounded;
-  t->coded.resi.plan = choose_chunked_plan(t->model, context.frames, context.snap_distance, &t->coded.resi.values, ro, plan);
+  t->coded.resi.plan = choose_chunked_plan(t->model, context.frames, context.snap_distance, &t->coded.resi.values, ro, context.plan);
   t->model.residual.payload = encode_residuals(t->model, t->coded.resi.values, t->coded.resi.plan, ro);
   if (t->model.residual.payload.empty()) return fail(&t->error, "internal error: the chunked residual plan is invalid");
   t->file = write_container(t->model, context.write);
@@ -89,14 +88,13 @@ bool choose_chunk_frames(Model* model, CodedResidual* coded, const EncodeContext
   const bool cut = how == ChunkTrial::Cut && current == F && coded->resi.plan.chunks.size() == 1;
   std::vector<LengthTrial> trials;
   for (uint32_t K : candidate_lengths(F)) trials.push_back({K, *model, {}, {}, {}});
-  // The lengths are measured side by side, sharing the threads; each writes its own slot.
-  ResidualPlanOptions each = context.plan;
-  each.threads = threads_per_job(context.plan.threads, trials.size());
+  // The lengths are measured side by side (each may use the cores the others leave idle);
+  // each writes its own slot.
   parallel_for(trials.size(), context.plan.threads, [&](size_t i) {
     LengthTrial& t = trials[i];
     if (t.K == current) {  // already coded so
       t.file = write_container(*model, context.write);
-    } else if (!(cut ? cut_length(&t, coded->resi, context, predicted) : plan_length(&t, context, predicted, each))) {
+    } else if (!(cut ? cut_length(&t, coded->resi, context, predicted) : plan_length(&t, context, predicted))) {
       t.file.clear();
     }
   });
@@ -108,7 +106,7 @@ bool choose_chunk_frames(Model* model, CodedResidual* coded, const EncodeContext
     return true;
   }
   // A cut plan only measured the length: the file gets a plan of its own chunks.
-  if (cut && !plan_length(&chosen, context, predicted, context.plan)) return fail(error, chosen.error);
+  if (cut && !plan_length(&chosen, context, predicted)) return fail(error, chosen.error);
   *model = std::move(chosen.model);
   coded->resi = std::move(chosen.coded.resi);
   file->swap(chosen.file);

@@ -91,12 +91,11 @@ GridChoice choose_grid(const Animation& anim, double max_distance, int threads, 
   ResidualLayer grids[kGridTrialSlots];
   for (size_t i = 0; i < kGridTrialSlots; ++i) grids[i] = make_grid(anim, max_distance, kGridRefinements[i]);
   auto run = [&](const std::vector<size_t>& slots) {
-    // Trials run side by side and share the threads.
-    const int each = threads_per_job(threads, slots.size());
+    // Trials run side by side; one that outlasts the others gets their cores (parallel_for).
     parallel_for(slots.size(), threads, [&](size_t k) {
       const size_t i = slots[k];
       // A tolerance too tiny for a refined grid's range gives the coarsest grid again.
-      bytes[i] = i > 0 && grids[i].step == grids[0].step ? SIZE_MAX : trial(grids[i], part, i, each);
+      bytes[i] = i > 0 && grids[i].step == grids[0].step ? SIZE_MAX : trial(grids[i], part, i, threads);
     });
     for (size_t i : slots) tried[i] = true;
   };

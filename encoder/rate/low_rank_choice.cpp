@@ -163,12 +163,10 @@ bool encode_with_prediction(Model* trial, CodedResidual* coded, const std::vecto
   std::vector<std::vector<uint8_t>> payloads(orders);
   std::vector<ResidualPlan> plans(orders);
   std::vector<std::vector<int32_t>> values(orders, rounded);
-  // The orders run side by side and share the threads.
-  const int each = threads_per_job(plan_options.threads, orders);
+  // The orders run side by side; each may use the cores the other leaves idle.
   parallel_for(orders, plan_options.threads, [&](size_t i) {
     ResidualPlanOptions one = plan_options;
     one.gop_sizes = {plan_options.gop_sizes[i]};
-    one.threads = each;
     plans[i] = choose_chunked_plan(*trial, frames, snap_distance, &values[i], ro, one);
     payloads[i] = encode_residuals(*trial, values[i], plans[i], ro);
   });

@@ -618,12 +618,11 @@ void cut_chunk(const Model& model, const std::vector<std::vector<float>>& frames
   if (po.axis_runs) cut(*po.axis_runs, 1, &in->runs);
 }
 
-// Plans one chunk on its own (its frames, values, predictions and snapping runs), on
-// `threads` threads, and writes its grid values back into *q.
+// Plans one chunk on its own (its frames, values, predictions and snapping runs) and writes its grid values back into *q.
 // `model` is the clip's model without its payload or low-rank model (what a chunk's plan
 // needs of it, copied once per chunk).
 void plan_chunk(const Model& model, const std::vector<std::vector<float>>& frames, double max_distance,
-                const ResidualOptions& options, const ResidualPlanOptions& po, ChunkSpan span, int threads,
+                const ResidualOptions& options, const ResidualPlanOptions& po, ChunkSpan span,
                 std::vector<int32_t>* q, PredictorPlan* out) {
   ChunkInput in;
   in.model = model;
@@ -632,7 +631,6 @@ void plan_chunk(const Model& model, const std::vector<std::vector<float>>& frame
   chunk_options.model_prediction = options.model_prediction ? &in.prediction : nullptr;
   ResidualPlanOptions chunk_po = po;
   chunk_po.axis_runs = po.axis_runs ? &in.runs : nullptr;
-  chunk_po.threads = threads;
   *out = choose_plan_and_grid(in.model, in.frames, max_distance, &in.q, chunk_options, chunk_po);
   const size_t stride = size_t(model.meta.vertex_count) * 3;
   std::copy(in.q.begin(), in.q.end(), q->begin() + ptrdiff_t(stride * span.first));
@@ -660,9 +658,8 @@ ResidualPlan choose_chunked_plan(const Model& model, const std::vector<std::vect
   lean.low_rank = LowRankModel();
   // Chunks are planned independently (format 3), side by side: each writes only its own
   // plan and frames, so the result does not depend on the thread count.
-  const int each = threads_per_job(po.threads, chunks);
   parallel_for(chunks, po.threads, [&](size_t c) {
-    plan_chunk(lean, frames, max_distance, shared, po, chunk_span(F, K, uint32_t(c)), each, q, &plan.chunks[c]);
+    plan_chunk(lean, frames, max_distance, shared, po, chunk_span(F, K, uint32_t(c)), q, &plan.chunks[c]);
   });
   return plan;
 }
