@@ -130,7 +130,7 @@ Action add_encode(CLI::App& app) {
                  "(14: 1/16383 of the range)")
       ->check(CLI::Range(1, int(kMaxAttributeBits)))
       ->capture_default_str();
-  app.add_option("--threads", o->threads, "Worker threads, 0 = all cores (output is the same for any count)")
+  app.add_option("--threads", o->threads, "Worker threads, at most the cores, 0 = all cores (output is the same for any count)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--json", o->json, "Print one JSON object with the encode summary on stdout");
   msg->add_flags(app);

@@ -80,7 +80,7 @@ void parallel_for(size_t count, int threads, Job job) {
     thrown.record(std::current_exception());
   }
   idle_cores() += int(helpers - pool.size());  // the cores of threads that did not start
-  work();  // the calling thread's core is idle from here until the joins
+  work();  // counts the calling thread's core idle once its jobs are done, until the joins
   for (std::thread& t : pool) t.join();
   --idle_cores();
   thrown.rethrow();

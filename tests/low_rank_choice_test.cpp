@@ -183,9 +183,8 @@ TEST(LowRankChoice, FollowedPickTriesTablesPerFrame) {
   ASSERT_TRUE(choose_low_rank(&m, {p.plan, p.coded}, context, two, &searched, &err)) << err;
   ASSERT_FALSE(searched.kept.geometry_per_frame);
   // The pick followed under each rule: one table, tables per frame, and tried.
-  auto follow = [&](bool per_frame, bool try_per_frame, CodedResidual* kept) {
+  auto follow = [&](bool try_per_frame, CodedResidual* kept) {
     EncodeContext c = context;
-    c.plan.geometry_per_frame = per_frame;
     c.plan.try_geometry_per_frame = try_per_frame;
     LowRankChoiceOptions o;
     o.follow = &searched.kept;
@@ -195,11 +194,11 @@ TEST(LowRankChoice, FollowedPickTriesTablesPerFrame) {
     return write_container(out, {});
   };
   CodedResidual one, tables, tried;
-  const std::vector<uint8_t> one_file = follow(false, false, &one);
+  const std::vector<uint8_t> one_file = follow(false, &one);
   searched.kept.geometry_per_frame = true;  // the pick's rule is planned
-  const std::vector<uint8_t> tables_file = follow(false, false, &tables);
+  const std::vector<uint8_t> tables_file = follow(false, &tables);
   searched.kept.geometry_per_frame = false;
-  const std::vector<uint8_t> tried_file = follow(false, true, &tried);
+  const std::vector<uint8_t> tried_file = follow(true, &tried);
   ASSERT_FALSE(plans_tables_per_frame(one.resi.plan));
   ASSERT_TRUE(plans_tables_per_frame(tables.resi.plan));
   ASSERT_LT(double(tables_file.size()), 0.98 * double(one_file.size()));

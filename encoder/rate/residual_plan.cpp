@@ -618,7 +618,8 @@ void cut_chunk(const Model& model, const std::vector<std::vector<float>>& frames
   if (po.axis_runs) cut(*po.axis_runs, 1, &in->runs);
 }
 
-// Plans one chunk on its own (its frames, values, predictions and snapping runs) and writes its grid values back into *q.
+// Plans one chunk on its own (its frames, values, predictions and snapping runs) and writes
+// its grid values back into *q.
 // `model` is the clip's model without its payload or low-rank model (what a chunk's plan
 // needs of it, copied once per chunk).
 void plan_chunk(const Model& model, const std::vector<std::vector<float>>& frames, double max_distance,
