@@ -343,8 +343,8 @@ std::vector<uint64_t> forecast_stages(const Animation& anim, const EncodeOptions
   const uint64_t trial_frames = grid_trial_frames(uint32_t(F), anim.vertex_count);
   if (trials) stages[kGridStage] = (opt.effort == kMaxEffort ? kWalkTrials : 2) * plain(trial_frames);
   // After trials of part of the clip, the whole clip's plan follows the winner (start_model):
-  // one order and at most one layout, then one low-rank trial of two orders and layouts, or
-  // the whole low-rank search when the trial kept no model.
+  // one order and at most one layout, then one low-rank trial (two orders, then the layouts
+  // on the better), or the whole low-rank search when the trial kept no model.
   const uint64_t followed = 2 * F + (!low_rank ? 0 : follows_model ? 4 * F : forecast_low_rank_frames(uint32_t(F)));
   if (!trials) stages[kPlainStage] = plain(F);
   else if (trial_frames < F) stages[kPlainStage] = opt.effort == kMaxEffort ? plain(F) : followed;

@@ -11,7 +11,6 @@
 #include "codec/compress/residual_encoder.h"
 #include "codec/compress/residual_values.h"
 #include "codec/decompress/model_prediction.h"
-#include "encoder/parallel.h"
 #include "encoder/rate/frame_poses.h"
 #include "encoder/rate/low_rank.h"
 #include "encoder/rate/plan_steps.h"
@@ -149,34 +148,19 @@ bool any_geometry_per_frame(const ResidualPlan& plan) {
 }
 
 // Residual plan and payload of `trial` with its low-rank prediction, coded->prediction (full
-// trial): a whole plan, per-cluster stage included, for each coding order of plan_options,
-// the smallest payload kept (the first among equals), and its plan and values in *coded.
-// One call with every order would refine only the order whose per-frame plan codes
-// smallest, and with a model the per-cluster choice can reverse that ranking.
+// trial): every coding order of plan_options planned one predictor per frame, then the
+// per-cluster stage on the order that codes smallest, as the plan without a model is made.
+// Its plan and values go to *coded.
 bool encode_with_prediction(Model* trial, CodedResidual* coded, const std::vector<std::vector<float>>& frames,
                             const std::vector<int32_t>& rounded, double snap_distance,
                             const ResidualPlanOptions& plan_options, const ResidualOptions& shared,
                             std::string* error) {
   ResidualOptions ro = shared;
   ro.model_prediction = &coded->prediction;
-  const size_t orders = plan_options.gop_sizes.size();
-  std::vector<std::vector<uint8_t>> payloads(orders);
-  std::vector<ResidualPlan> plans(orders);
-  std::vector<std::vector<int32_t>> values(orders, rounded);
-  // The orders run side by side; each may use the cores the other leaves idle.
-  parallel_for(orders, plan_options.threads, [&](size_t i) {
-    ResidualPlanOptions one = plan_options;
-    one.gop_sizes = {plan_options.gop_sizes[i]};
-    plans[i] = choose_chunked_plan(*trial, frames, snap_distance, &values[i], ro, one);
-    payloads[i] = encode_residuals(*trial, values[i], plans[i], ro);
-  });
-  size_t best = orders;
-  for (size_t i = 0; i < orders; ++i)
-    if (!payloads[i].empty() && (best == orders || payloads[i].size() < payloads[best].size())) best = i;
-  if (best == orders) return fail(error, "internal error: the low-rank residual plan is invalid");
-  trial->residual.payload = std::move(payloads[best]);
-  coded->resi.plan = std::move(plans[best]);
-  coded->resi.values = std::move(values[best]);
+  coded->resi.values = rounded;
+  coded->resi.plan = choose_chunked_plan(*trial, frames, snap_distance, &coded->resi.values, ro, plan_options);
+  trial->residual.payload = encode_residuals(*trial, coded->resi.values, coded->resi.plan, ro);
+  if (trial->residual.payload.empty()) return fail(error, "internal error: the low-rank residual plan is invalid");
   return true;
 }
 
@@ -688,7 +672,7 @@ bool choose_low_rank(Model* model, const PlannedResidual& planned, const EncodeC
 }
 
 // Screening plans each sampled frame once per candidate (a few dozen on the corpus), and
-// about three full trials plan the clip in two orders and both layouts.
+// about three full trials plan the clip in two orders, then both layouts on the better.
 uint64_t forecast_low_rank_frames(uint32_t F) {
   const uint64_t sampled = (F + screen_stride(F) - 1) / screen_stride(F);
   return kForecastCandidates * sampled + kForecastTrials * 4 * uint64_t(F);
