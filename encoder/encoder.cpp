@@ -97,8 +97,8 @@ struct GridStart {
   WorkMeter* meter = nullptr;  // counts the frames every plan of the encode plans; may be null
 };
 
-// The rate control's view of an encode of `anim` from `start`. Every effort plans every
-// coding order: hierarchical orders interpolate smooth motion, and time order alone codes
+// The rate control's view of an encode of `anim` from `start`. Every effort searches all the
+// coding orders: hierarchical orders interpolate smooth motion, and time order alone codes
 // long, smooth clips much larger, though it changes little on others.
 EncodeContext context_of(const Animation& anim, const EncodeOptions& opt, const GridStart& start) {
   EncodeContext c(anim.frames, start.rounded);
@@ -323,11 +323,11 @@ void report_face_order(const std::vector<uint32_t>& faces, EncodeReport* rep) {
 // The stages of an encode, in the order encode_animation runs them, for its WorkMeter.
 enum Stage { kGridStage, kPlainStage, kChunkStage, kMotionStage, kFinishStage, kStageCount };
 
-// Frame plans of one residual plan of F frames: one per coding order, then one per cluster
-// layout on the order that won.
+// Frame plans of one residual plan of F frames: one per coding order planned (both ends of
+// the list and usually one more), then one per cluster layout on the order that won.
 uint64_t residual_plan_frames(uint64_t F) {
   const ResidualPlanOptions po;
-  return (po.gop_sizes.size() + po.cluster_layouts.size()) * F;
+  return (std::min<size_t>(po.gop_sizes.size(), 3) + po.cluster_layouts.size()) * F;
 }
 
 // Forecast frame plans of each Stage of encoding `anim` with `opt`. follows_model: whether a

@@ -1,5 +1,7 @@
 // Planning options narrowed to a plan's own choices (encoder/rate/residual_plan.h): planning
 // again with them tries one coding order and at most one layout, and gives the same plan.
+// The walk over coding orders keeps the smallest of them where sizes fall steadily, and
+// plans fewer than all.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +14,7 @@
 #include "encoder/metrics.h"
 #include "encoder/rate/grid.h"
 #include "encoder/rate/residual_plan.h"
+#include "encoder/work_meter.h"
 #include "test_util.h"
 
 namespace dcurve::test {
@@ -48,6 +51,47 @@ TEST(ResidualPlan, NarrowedToItsChoicesPlansTheSamePlanAgain) {
       EXPECT_EQ(again, q);
       EXPECT_EQ(encode_residuals(m, again, &replanned, {}), encode_residuals(m, q, &won, {}));
     }
+}
+
+// Each order planned alone gives its size; the walk must pick the smallest of them on these
+// clips (their sizes fall or rise steadily) and plan fewer frames than all five orders would.
+TEST(ResidualPlan, OrderWalkKeepsTheSmallestOrderAndSkipsSome) {
+  for (const char* scene : {"cantilever", "rope-small"}) {
+    SCOPED_TRACE(scene);
+    const Animation anim = simulate_builtin(scene, 40);
+    const double max_distance = 1e-3 * bbox_diagonal(anim.frames[0]);
+    Model m;
+    m.meta = {anim.vertex_count, uint32_t(anim.frames.size()), 30.0, 1e-3, bbox_diagonal(anim.frames[0]), ""};
+    m.faces = anim.faces;
+    m.curves = singleton_curves(anim.vertex_count);
+    m.residual = make_grid(anim, max_distance, 3.0);
+    std::vector<int32_t> rounded;
+    std::string err;
+    ASSERT_TRUE(quantize_to_grid(anim, m.residual, &rounded, &err)) << err;
+    ResidualPlanOptions all;
+    all.cluster_layouts.clear();  // the orders alone
+    size_t smallest = SIZE_MAX;
+    std::vector<uint32_t> smallest_order;
+    for (uint32_t gop : all.gop_sizes) {
+      ResidualPlanOptions one = all;
+      one.gop_sizes = {gop};
+      std::vector<int32_t> q = rounded;
+      const PredictorPlan plan = choose_plan_and_grid(m, anim.frames, max_distance, &q, {}, one);
+      const size_t bytes = encode_residuals(m, q, &plan, {}).size();
+      if (bytes < smallest) {
+        smallest = bytes;
+        smallest_order = plan.order;
+      }
+    }
+    WorkMeter meter(nullptr);
+    all.meter = &meter;
+    std::vector<int32_t> q = rounded;
+    const PredictorPlan walked = choose_plan_and_grid(m, anim.frames, max_distance, &q, {}, all);
+    EXPECT_EQ(walked.order, smallest_order);
+    EXPECT_EQ(encode_residuals(m, q, &walked, {}).size(), smallest);
+    EXPECT_LT(meter.frames_planned(), all.gop_sizes.size() * anim.frames.size());
+    EXPECT_GE(meter.frames_planned(), 2 * anim.frames.size());
+  }
 }
 
 }  // namespace
