@@ -506,7 +506,7 @@ struct PlanTrial {
   size_t bytes = SIZE_MAX;
 };
 
-// Runs run(i) for the coding orders (*orders, by ascending group size) that can code
+// Runs run(i) for the coding orders (*orders, by ascending group size) likely to code
 // smallest. A clip's sizes mostly fall or rise steadily along the list (time order wins
 // short chunks, the largest group long smooth clips), so both ends are planned, then the
 // orders from the smaller end inwards while each codes smaller than the one before: two
