@@ -19,8 +19,8 @@ struct ResidualPlanOptions {
   // How far back reference frames are searched, frames, >= 1.
   uint32_t max_reference_distance = 1024;
   // Coding orders tried (the smallest coded wins; residual_plan.cpp's walk_orders plans only
-  // those its walk from both ends reaches): 1 is time order; g > 1 codes every g-th frame first and the frames between
-  // by recursive midpoints. Not empty, ascending; each >= 1.
+  // those its walk from both ends reaches): 1 is time order; g > 1 codes every g-th frame
+  // first and the frames between by recursive midpoints. Not empty, ascending; each >= 1.
   std::vector<uint32_t> gop_sizes = {1, 2, 4, 8, 16};
   // Choose grid values within the tolerance (true) or keep the rounded ones (false).
   bool snap = true;
